@@ -1,0 +1,35 @@
+// BSDF evaluation, sampling and pdf in the local shading frame (z = shading normal).
+// Conventions follow Mitsuba: `wi` points towards the previous vertex (the camera side),
+// `wo` is the sampled direction; eval() returns f(wi, wo) * |cos(wo)| and excludes
+// Dirac components, which only sample() produces (with delta = true).
+#pragma once
+
+#include "erpt/material.h"
+
+namespace erpt {
+
+struct BsdfSample {
+  Vec3 wo;
+  Color weight;       // f * |cos(wo)| / pdf  (for a Dirac component: its full weight)
+  float pdf = 0;      // solid-angle pdf of the whole BSDF for wo (including lobe choice)
+  bool delta = false; // a Dirac component was sampled
+  float eta = 1;      // relative IOR crossed (1 for reflection)
+};
+
+Color bsdfEval(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo);
+float bsdfPdf(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo);
+// u1 picks a lobe, (u2, u3) the direction. Returns false when nothing can be sampled.
+bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wi, float u1, float u2, float u3, BsdfSample& out);
+
+// Computes the derived fields of a material (plastic's Fdr and coat sampling weight).
+void finalizeMaterial(Material& m);
+
+// Fresnel and microfacet building blocks, exposed for tests.
+float fresnelDielectric(float cosThetaI, float eta, float* cosThetaT = nullptr);
+Color fresnelConductor(float cosThetaI, Color eta, Color k);
+float diffuseFresnelReflectance(float eta);
+float microfacetD(MicrofacetKind kind, float alpha, Vec3 m);
+float microfacetG1(MicrofacetKind kind, float alpha, Vec3 v, Vec3 m);
+Vec3 microfacetSampleNormal(MicrofacetKind kind, float alpha, float u1, float u2);
+
+}  // namespace erpt

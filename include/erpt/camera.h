@@ -1,0 +1,31 @@
+// Mitsuba's perspective (pinhole) camera. Camera space: +z looks forward, +y is up and +x
+// points to the image's left (Mitsuba's convention); film coordinates are in pixels with
+// (0, 0) at the top-left corner of the image.
+#pragma once
+
+#include "erpt/scene.h"
+
+namespace erpt {
+
+class Camera {
+ public:
+  Camera(const CameraSettings& settings, int width, int height);
+
+  struct Ray {
+    Vec3 origin, direction;  // direction normalized
+    float tnear, tfar;       // the clip planes along this ray
+  };
+  Ray generateRay(float filmX, float filmY) const;
+  // World point to film coordinates; false when behind the camera.
+  bool project(Vec3 p, float& filmX, float& filmY) const;
+  Vec3 position() const { return origin_; }
+  float tanHalfFovX() const { return tanHalfX_; }
+
+ private:
+  Transform toWorld_, toCamera_;
+  Vec3 origin_;
+  float tanHalfX_, aspect_, nearClip_, farClip_;
+  int width_, height_;
+};
+
+}  // namespace erpt

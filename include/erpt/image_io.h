@@ -1,0 +1,33 @@
+// Image files through OpenImageIO. Writes are atomic: the image goes to a temporary file
+// beside the target and is renamed over it only when complete, so a failed or interrupted
+// run never leaves a partial image behind.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "erpt/math.h"
+
+namespace erpt {
+
+struct RgbImage {
+  int width = 0, height = 0;
+  std::vector<Color> pixels;  // row-major, row 0 at the top
+  Color& at(int x, int y) { return pixels[size_t(y) * width + x]; }
+  const Color& at(int x, int y) const { return pixels[size_t(y) * width + x]; }
+};
+
+// Reads any format OpenImageIO knows. `isSrgbEncoded` tells whether the file stores
+// display-encoded (sRGB) values, as 8-bit PNG/JPEG do. Throws InputError naming the file.
+RgbImage readImage(const std::string& path, bool* isSrgbEncoded = nullptr);
+
+// Linear float EXR (or any format by extension; low dynamic range formats get the PNG
+// treatment below). Throws std::runtime_error on failure, leaving no file behind.
+void writeImageAtomic(const std::string& path, const RgbImage& image);
+// Tone-mapped display image: clamp to [0,1], sRGB transfer curve, 8 bits.
+void writePngAtomic(const std::string& path, const RgbImage& image);
+
+// Remove any temporary image being written (for signal handlers: async-signal-safe).
+void removePendingImageFiles();
+
+}  // namespace erpt

@@ -1,0 +1,44 @@
+// Materials as plain data (one struct for every BSDF kind; the kind selects the code path).
+// Textured colours are resolved to constants at a hit before the BSDF is evaluated.
+#pragma once
+
+#include <string>
+
+#include "erpt/texture.h"
+
+namespace erpt {
+
+enum class BsdfKind { Diffuse, Conductor, RoughConductor, Dielectric, ThinDielectric, Plastic, RoughPlastic };
+enum class MicrofacetKind { Beckmann, GGX };
+
+struct Material {
+  std::string name;  // the XML id, or the plugin type when anonymous
+  BsdfKind kind = BsdfKind::Diffuse;
+  // Wrapped in `twosided`: the back side behaves like the front. Without it, reflective
+  // BSDFs are black from behind (as in Mitsuba); dielectrics are two-sided by nature.
+  bool twoSided = false;
+  ColorParam reflectance{Color(0.5f)};            // diffuse / plastic's diffuse layer
+  ColorParam specularReflectance{Color(1.0f)};    // conductor, dielectric, plastic coat
+  ColorParam specularTransmittance{Color(1.0f)};  // dielectric, thindielectric
+  Color eta{0.0f}, k{1.0f};                       // conductor (default: a perfect mirror)
+  float intIOR = 1.5046f, extIOR = 1.000277f;     // dielectric / plastic (Mitsuba's defaults)
+  MicrofacetKind distribution = MicrofacetKind::Beckmann;
+  float alpha = 0.1f;
+  bool nonlinear = false;  // plastic: Mitsuba's `nonlinear` internal scattering model
+  // Derived when the scene is finalized:
+  float fdrInternal = 0;             // plastic: diffuse Fresnel reflectance seen from inside
+  float specularSamplingWeight = 0;  // plastic: share of samples given to the coat
+
+  float relativeIOR() const { return intIOR / extIOR; }
+  bool isPureSpecular() const {
+    return kind == BsdfKind::Conductor || kind == BsdfKind::Dielectric || kind == BsdfKind::ThinDielectric;
+  }
+  bool hasSpecular() const { return isPureSpecular() || kind == BsdfKind::Plastic; }
+};
+
+// Resolved colour parameters of a material at one surface point.
+struct SurfaceColors {
+  Color reflectance, specularReflectance, specularTransmittance;
+};
+
+}  // namespace erpt

@@ -1,0 +1,47 @@
+// The only place queue fields are declared: one X-macro per queue, one line per field
+// (type, name, what it holds). queues.h turns them into SoA structs.
+#pragma once
+
+// Rays as Embree's stream API reads them (RTCRayNp): one column per component.
+#define ERPT_RAY_FIELDS(F)                                       \
+  F(float, orgX, "origin x")                                     \
+  F(float, orgY, "origin y")                                     \
+  F(float, orgZ, "origin z")                                     \
+  F(float, tnear, "start of the valid interval")                 \
+  F(float, dirX, "direction x (need not be normalized)")         \
+  F(float, dirY, "direction y")                                  \
+  F(float, dirZ, "direction z")                                  \
+  F(float, time, "motion blur time (unused, 0)")                 \
+  F(float, tfar, "end of the interval; the hit distance after intersect, -inf if occluded") \
+  F(unsigned, mask, "Embree ray mask")                          \
+  F(unsigned, id, "Embree ray id")                               \
+  F(unsigned, flags, "Embree ray flags")
+
+// Closest-hit results (RTCHitNp).
+#define ERPT_HIT_FIELDS(F)                                       \
+  F(float, ngX, "Embree's unnormalized geometric normal x")     \
+  F(float, ngY, "geometric normal y")                            \
+  F(float, ngZ, "geometric normal z")                            \
+  F(float, u, "barycentric coordinate of vertex 1")              \
+  F(float, v, "barycentric coordinate of vertex 2")              \
+  F(unsigned, primID, "triangle index into Scene::mesh")         \
+  F(unsigned, geomID, "RTC_INVALID_GEOMETRY_ID on a miss")       \
+  F(unsigned, instID, "instance id (unused)")
+
+// A camera sample of the direct-lighting integrator, as it moves through its stages.
+#define ERPT_DIRECT_SAMPLE_FIELDS(F)                                   \
+  F(uint32_t, pixel, "pixel index y * width + x")                      \
+  F(uint32_t, sample, "sample index within the pixel")                 \
+  F(float, radianceR, "radiance gathered so far, red")                 \
+  F(float, radianceG, "green")                                         \
+  F(float, radianceB, "blue")                                          \
+  F(float, shadowR, "next-event contribution if the shadow ray is unoccluded, red") \
+  F(float, shadowG, "green")                                           \
+  F(float, shadowB, "blue")                                            \
+  F(float, bsdfR, "BSDF sample weight f*cos/pdf, red (0: no BSDF ray)") \
+  F(float, bsdfG, "green")                                             \
+  F(float, bsdfB, "blue")                                              \
+  F(float, bsdfPdf, "solid-angle pdf of the BSDF sample (0 for a Dirac lobe)") \
+  F(float, hitX, "first-hit position x, for the light pdf of BSDF-sampled emitter hits") \
+  F(float, hitY, "first-hit position y")                               \
+  F(float, hitZ, "first-hit position z")

@@ -1,0 +1,13 @@
+// SoA queue types built from queue_fields.h.
+#pragma once
+
+#include "erpt/queue_fields.h"
+#include "erpt/soa.h"
+
+namespace erpt {
+
+ERPT_SOA_STRUCT(RayQueue, ERPT_RAY_FIELDS)
+ERPT_SOA_STRUCT(HitQueue, ERPT_HIT_FIELDS)
+ERPT_SOA_STRUCT(DirectSampleQueue, ERPT_DIRECT_SAMPLE_FIELDS)
+
+}  // namespace erpt

@@ -1,0 +1,72 @@
+// Counter-based random numbers: every value is a pure function of (seed, stream key,
+// dimension), so results do not depend on thread count, scheduling or batch boundaries.
+// The path tracer keys streams by (pixel, sample); ERPT will key them by (chain, step).
+#pragma once
+
+#include <cstdint>
+
+namespace erpt {
+
+// SplitMix64 finalizer: a bijective mixer with full avalanche.
+inline uint64_t mix64(uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+inline uint64_t streamKey(uint64_t seed, uint64_t a, uint64_t b) { return mix64(mix64(seed ^ mix64(a)) + b); }
+
+// Uniform float in [0, 1) for dimension `dim` of stream `key`.
+inline float uniformFloat(uint64_t key, uint32_t dim) {
+  return float(mix64(key + 0x632be59bd9b4e019ull * (uint64_t(dim) + 1)) >> 40) * 0x1p-24f;
+}
+inline uint32_t uniformUint(uint64_t key, uint32_t dim) {
+  return uint32_t(mix64(key + 0x632be59bd9b4e019ull * (uint64_t(dim) + 1)) >> 32);
+}
+
+// A stream with a running dimension counter, for code that draws many numbers in sequence.
+struct SampleStream {
+  uint64_t key;
+  uint32_t dim = 0;
+  float next() { return uniformFloat(key, dim++); }
+};
+
+}  // namespace erpt
+
+namespace erpt {
+
+// A pseudo-random permutation of [0, n) indexed by `i`, chosen by `key` (Kensler 2013,
+// "Correlated Multi-Jittered Sampling": a hash restricted to the next power of two, retried
+// until it lands inside [0, n)). Used to pair strata across dimensions.
+inline uint32_t permuteIndex(uint32_t i, uint32_t n, uint32_t key) {
+  uint32_t w = n - 1;
+  w |= w >> 1;
+  w |= w >> 2;
+  w |= w >> 4;
+  w |= w >> 8;
+  w |= w >> 16;
+  do {
+    i ^= key;
+    i *= 0xe170893du;
+    i ^= key >> 16;
+    i ^= (i & w) >> 4;
+    i ^= key >> 8;
+    i *= 0x0929eb3fu;
+    i ^= key >> 23;
+    i ^= (i & w) >> 1;
+    i *= 1u | key >> 27;
+    i *= 0x6935fa69u;
+    i ^= (i & w) >> 11;
+    i *= 0x74dcb303u;
+    i ^= (i & w) >> 2;
+    i *= 0x9e501cc3u;
+    i ^= (i & w) >> 2;
+    i *= 0xc860a3dfu;
+    i &= w;
+    i ^= i >> 5;
+  } while (i >= n);
+  return (i + key) % n;
+}
+
+}  // namespace erpt

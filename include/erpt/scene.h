@@ -1,0 +1,95 @@
+// A loaded scene in the renderer's own layout: one world-space triangle soup stored as
+// structure-of-arrays columns (positions, shading normals, uvs per vertex; indices, material,
+// emitter and shape per triangle), plus materials, textures, emitters, camera and film.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "erpt/error.h"
+#include "erpt/material.h"
+#include "erpt/math.h"
+
+namespace erpt {
+
+struct TriangleSoup {
+  // per vertex
+  std::vector<float> px, py, pz;
+  std::vector<float> nx, ny, nz;  // shading normals (valid where the triangle's smooth flag is set)
+  std::vector<float> u, v;        // texture coordinates (0 where the mesh has none)
+  // per triangle
+  std::vector<uint32_t> v0, v1, v2;
+  std::vector<int32_t> material;  // index into Scene::materials
+  std::vector<int32_t> emitter;   // index into Scene::emitters, -1 when not emissive
+  std::vector<int32_t> shape;     // index into Scene::shapes
+  std::vector<uint8_t> smooth;    // 1: interpolate vertex normals; 0: use the face normal
+
+  size_t vertexCount() const { return px.size(); }
+  size_t triangleCount() const { return v0.size(); }
+  Vec3 position(uint32_t i) const { return {px[i], py[i], pz[i]}; }
+  Vec3 normal(uint32_t i) const { return {nx[i], ny[i], nz[i]}; }
+  // Geometric (face) normal of a triangle, unnormalized; its length is twice the area.
+  Vec3 faceNormal(uint32_t tri) const {
+    Vec3 a = position(v0[tri]);
+    return cross(position(v1[tri]) - a, position(v2[tri]) - a);
+  }
+};
+
+struct ShapeInfo {
+  std::string type;  // obj, ply, rectangle, ...
+  std::string id;
+  SourceLocation where;
+  uint32_t firstTriangle = 0, triangleCount = 0;
+};
+
+enum class EmitterKind { Area, Point, Constant };
+
+struct Emitter {
+  EmitterKind kind = EmitterKind::Area;
+  Color radiance{0.0f};  // area and constant: radiance; point: intensity (W/sr)
+  Vec3 position;         // point
+  int shape = -1;        // area: the shape it is attached to
+};
+
+enum class FilterKind { Box, Tent, Gaussian };
+
+enum class FovAxis { X, Y, Diagonal, Smaller, Larger };
+
+struct CameraSettings {
+  Transform toWorld;
+  float fovDegrees = 39.3077f;  // measured along fovAxis; converted once the film size is known
+  FovAxis fovAxis = FovAxis::X;
+  float nearClip = 1e-2f, farClip = 1e4f;
+};
+
+struct FilmSettings {
+  int width = 768, height = 576;
+  FilterKind filter = FilterKind::Gaussian;  // Mitsuba's default reconstruction filter
+};
+
+struct IntegratorSettings {
+  std::string type = "path";
+  int maxDepth = -1;  // Mitsuba's meaning: -1 unbounded, 1 = directly visible emitters only
+  int spp = 4;
+};
+
+struct Scene {
+  std::string file;
+  TriangleSoup mesh;
+  std::vector<ShapeInfo> shapes;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<Emitter> emitters;
+  CameraSettings camera;
+  FilmSettings film;
+  IntegratorSettings integrator;
+  Warnings warnings;
+  size_t droppedDegenerateTriangles = 0;
+
+  // Resolves the (possibly textured) colours of a material at texture coordinates (u, v).
+  SurfaceColors surfaceColors(int material, float u, float v) const;
+  const Emitter* environment() const;
+};
+
+}  // namespace erpt

@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Installs, builds as needed, and runs every test: the Release build, then the same suite
+# under AddressSanitizer + UndefinedBehaviorSanitizer (skip that with --release-only).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/build.sh
+(cd build && ctest --output-on-failure -j2)
+if [ "${1:-}" != "--release-only" ]; then
+  bash scripts/build.sh --sanitize
+  (cd build-sanitize && ASAN_OPTIONS=detect_leaks=0 ctest --output-on-failure -j2)
+fi

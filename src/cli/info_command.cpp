@@ -1,0 +1,60 @@
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "commands.h"
+#include "erpt/scene_loader.h"
+
+namespace erpt::cli {
+
+void addInfoCommand(CLI::App& app, InfoArgs& a) {
+  CLI::App* cmd = app.add_subcommand("info", "Print what a scene contains and any warnings");
+  cmd->add_option("scene", a.scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required();
+  cmd->add_option("-D,--define", a.defines, "Override a scene <default>: -D name=value (repeatable)");
+}
+
+namespace {
+const char* kindName(BsdfKind k) {
+  switch (k) {
+    case BsdfKind::Diffuse: return "diffuse";
+    case BsdfKind::Conductor: return "conductor";
+    case BsdfKind::RoughConductor: return "roughconductor";
+    case BsdfKind::Dielectric: return "dielectric";
+    case BsdfKind::ThinDielectric: return "thindielectric";
+    case BsdfKind::Plastic: return "plastic";
+    case BsdfKind::RoughPlastic: return "roughplastic";
+  }
+  return "?";
+}
+const char* emitterName(EmitterKind k) {
+  return k == EmitterKind::Area ? "area" : k == EmitterKind::Point ? "point" : "constant";
+}
+}  // namespace
+
+int runInfo(const InfoArgs& a) {
+  LoadOptions load;
+  load.defines = parseDefines(a.defines);
+  Scene scene = loadScene(a.scene, load);
+  std::cout << "scene:      " << a.scene << "\n"
+            << "film:       " << scene.film.width << "x" << scene.film.height << ", " << scene.integrator.spp << " spp\n"
+            << "integrator: " << scene.integrator.type << " (max depth " << scene.integrator.maxDepth << ")\n"
+            << "triangles:  " << scene.mesh.triangleCount() << " (" << scene.droppedDegenerateTriangles
+            << " degenerate dropped)\n"
+            << "vertices:   " << scene.mesh.vertexCount() << "\n"
+            << "shapes:     " << scene.shapes.size() << "\n";
+  for (const ShapeInfo& s : scene.shapes)
+    std::cout << "  " << s.type << (s.id.empty() ? "" : " '" + s.id + "'") << ": " << s.triangleCount << " triangles\n";
+  std::cout << "lights:     " << scene.emitters.size() << "\n";
+  for (const Emitter& e : scene.emitters)
+    std::cout << "  " << emitterName(e.kind) << " (" << e.radiance.x << ", " << e.radiance.y << ", " << e.radiance.z
+              << ")\n";
+  std::cout << "materials:  " << scene.materials.size() << "\n";
+  for (const Material& m : scene.materials)
+    std::cout << "  " << m.name << ": " << kindName(m.kind) << (m.twoSided ? ", two-sided" : "") << "\n";
+  std::cout << "textures:   " << scene.textures.size() << "\n"
+            << "warnings:   " << scene.warnings.messages.size() << "\n";
+  for (const std::string& w : scene.warnings.messages) std::cout << "  " << w << "\n";
+  return 0;
+}
+
+}  // namespace erpt::cli

@@ -1,0 +1,86 @@
+#include <filesystem>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "commands.h"
+#include "erpt/render.h"
+#include "erpt/scene_loader.h"
+#include "progress.h"
+
+namespace erpt::cli {
+
+std::map<std::string, std::string> parseDefines(const std::vector<std::string>& defines) {
+  std::map<std::string, std::string> out;
+  for (const std::string& d : defines) {
+    size_t eq = d.find('=');
+    if (eq == std::string::npos || eq == 0) throw UsageError("-D expects name=value, got '" + d + "'");
+    out[d.substr(0, eq)] = d.substr(eq + 1);
+  }
+  return out;
+}
+
+void addRenderCommand(CLI::App& app, RenderArgs& a) {
+  CLI::App* cmd = app.add_subcommand("render", "Render a Mitsuba XML scene to a linear EXR and a tone-mapped PNG");
+  cmd->add_option("scene", a.scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required();
+  cmd->add_option("-o,--output", a.output, "Output EXR path; the PNG is written beside it")->required();
+  cmd->add_option("--integrator", a.integrator, "Integrator: direct (default; the path tracer and ERPT land later)");
+  cmd->add_option("--spp", a.spp, "Samples per pixel (default: the scene's sample_count)")->check(CLI::Range(1, 1 << 24));
+  cmd->add_option("--width", a.width, "Image width in pixels (default: the scene's film)")->check(CLI::Range(1, 65536));
+  cmd->add_option("--height", a.height, "Image height in pixels (default: the scene's film)")->check(CLI::Range(1, 65536));
+  cmd->add_option("--threads", a.threads, "Worker threads (default 0 = all cores)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--seed", a.seed, "Random seed; the same seed gives the same image for any --threads");
+  cmd->add_option("--max-depth", a.maxDepth, "Longest path in segments, Mitsuba's meaning (-1 = unbounded)")
+      ->check(CLI::Range(-1, 100000));
+  cmd->add_option("--filter", a.filter, "Pixel filter: box, tent or gaussian (default: the scene's rfilter)")
+      ->check(CLI::IsMember({"box", "tent", "gaussian"}));
+  cmd->add_option("-D,--define", a.defines, "Override a scene <default>: -D name=value (repeatable)");
+  cmd->add_flag("-q,--quiet", a.quiet, "No progress output");
+}
+
+int runRender(const RenderArgs& a) {
+  namespace fs = std::filesystem;
+  fs::path out(a.output);
+  if (out.extension() != ".exr") throw UsageError("-o must name an .exr file (the PNG is written beside it)");
+  fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+  if (!fs::is_directory(dir)) throw UsageError("output directory '" + dir.string() + "' does not exist");
+  if (a.maxDepth == 0) throw UsageError("--max-depth must be -1 (unbounded) or at least 1");
+
+  LoadOptions load;
+  load.defines = parseDefines(a.defines);
+  Scene scene = loadScene(a.scene, load);
+  for (const std::string& w : scene.warnings.messages) std::cerr << w << "\n";
+
+  RenderSettings s;
+  s.integrator = a.integrator;
+  s.width = a.width;
+  s.height = a.height;
+  s.spp = a.spp;
+  s.maxDepth = a.maxDepth;
+  s.seed = a.seed;
+  s.threads = a.threads;
+  if (!a.filter.empty()) {
+    s.filterSet = true;
+    s.filter = a.filter == "box" ? FilterKind::Box : a.filter == "tent" ? FilterKind::Tent : FilterKind::Gaussian;
+  }
+  if (scene.integrator.type != s.integrator && !a.quiet)
+    std::cerr << "note: the scene asks for integrator '" << scene.integrator.type << "'; rendering with '"
+              << s.integrator << "'\n";
+  Progress progress(!a.quiet);
+  s.progress = [&](double f) { progress.update(f); };
+  RenderStats stats;
+  RgbImage image = render(scene, s, stats);
+
+  fs::path png = out;
+  png.replace_extension(".png");
+  writeImageAtomic(out.string(), image);
+  writePngAtomic(png.string(), image);
+  RenderSettings r = resolveSettings(scene, s);
+  std::fprintf(stderr, "%s: %dx%d, %d spp, %llu samples in %.2f s, %.2f Mrays/s, %llu invalid samples dropped -> %s, %s\n",
+               s.integrator.c_str(), r.width, r.height, r.spp, (unsigned long long)stats.samples, stats.seconds,
+               stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0,
+               (unsigned long long)stats.invalidSamples, out.string().c_str(), png.string().c_str());
+  return 0;
+}
+
+}  // namespace erpt::cli

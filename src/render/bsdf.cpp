@@ -1,0 +1,204 @@
+// The BSDFs: one switch per entry point over the material kind.
+#include "erpt/bsdf.h"
+
+#include "erpt/warp.h"
+
+namespace erpt {
+
+namespace {
+
+bool isTransmissive(BsdfKind k) { return k == BsdfKind::Dielectric || k == BsdfKind::ThinDielectric; }
+
+// Reflective BSDFs see the world from their front side. For `twosided` materials a hit on
+// the back is mirrored to the front; otherwise the back side is black (flip = 0).
+float sideFlip(const Material& m, Vec3 wi) {
+  if (isTransmissive(m.kind)) return 1.0f;
+  if (wi.z > 0) return 1.0f;
+  return m.twoSided && wi.z < 0 ? -1.0f : 0.0f;
+}
+
+Vec3 flipZ(Vec3 v, float s) { return {v.x, v.y, v.z * s}; }
+
+Vec3 mirror(Vec3 wi) { return {-wi.x, -wi.y, wi.z}; }
+
+float plasticSpecularProbability(const Material& m, float fresnelIn) {
+  float s = fresnelIn * m.specularSamplingWeight;
+  float d = (1 - fresnelIn) * (1 - m.specularSamplingWeight);
+  return s + d > 0 ? s / (s + d) : 0.0f;
+}
+
+// Diffuse base of (rough)plastic under a smooth-Fresnel coat (Mitsuba's plastic model; for
+// roughplastic the macro-surface Fresnel stands in for Mitsuba's tabulated rough one).
+Color plasticDiffuse(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
+  float eta = m.relativeIOR();
+  float fi = fresnelDielectric(wi.z, eta), fo = fresnelDielectric(wo.z, eta);
+  Color diff = c.reflectance;
+  if (m.nonlinear)
+    diff = diff / (Color(1.0f) - diff * m.fdrInternal);
+  else
+    diff = diff / (1.0f - m.fdrInternal);
+  return diff * ((1 - fi) * (1 - fo) * wo.z * kInvPi / (eta * eta));
+}
+
+// Microfacet reflection lobe, f * cos(wo), with Fresnel `fres` at the half vector.
+Color microfacetReflection(const Material& m, Vec3 wi, Vec3 wo, Color tint, bool conductor) {
+  Vec3 h = normalize(wi + wo);
+  float d = microfacetD(m.distribution, m.alpha, h);
+  if (d == 0) return Color(0.0f);
+  float g = microfacetG1(m.distribution, m.alpha, wi, h) * microfacetG1(m.distribution, m.alpha, wo, h);
+  float cosIH = dot(wi, h);
+  Color f = conductor ? fresnelConductor(cosIH, m.eta, m.k) : Color(fresnelDielectric(cosIH, m.relativeIOR()));
+  return tint * f * (d * g / (4.0f * wi.z));
+}
+
+float microfacetReflectionPdf(const Material& m, Vec3 wi, Vec3 wo) {
+  Vec3 h = normalize(wi + wo);
+  float dotOH = dot(wo, h);
+  if (dotOH <= 0) return 0.0f;
+  return microfacetD(m.distribution, m.alpha, h) * h.z / (4.0f * dotOH);
+}
+
+Color evalFront(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
+  if (wi.z <= 0 || wo.z <= 0) return Color(0.0f);
+  switch (m.kind) {
+    case BsdfKind::Diffuse:
+      return c.reflectance * (wo.z * kInvPi);
+    case BsdfKind::RoughConductor:
+      return microfacetReflection(m, wi, wo, c.specularReflectance, true);
+    case BsdfKind::Plastic:
+      return plasticDiffuse(m, c, wi, wo);
+    case BsdfKind::RoughPlastic:
+      return microfacetReflection(m, wi, wo, c.specularReflectance, false) + plasticDiffuse(m, c, wi, wo);
+    default:
+      return Color(0.0f);  // purely specular
+  }
+}
+
+float pdfFront(const Material& m, Vec3 wi, Vec3 wo) {
+  if (wi.z <= 0 || wo.z <= 0) return 0.0f;
+  switch (m.kind) {
+    case BsdfKind::Diffuse:
+      return cosineHemispherePdf(wo);
+    case BsdfKind::RoughConductor:
+      return microfacetReflectionPdf(m, wi, wo);
+    case BsdfKind::Plastic:
+      return (1 - plasticSpecularProbability(m, fresnelDielectric(wi.z, m.relativeIOR()))) * cosineHemispherePdf(wo);
+    case BsdfKind::RoughPlastic: {
+      float ps = plasticSpecularProbability(m, fresnelDielectric(wi.z, m.relativeIOR()));
+      return ps * microfacetReflectionPdf(m, wi, wo) + (1 - ps) * cosineHemispherePdf(wo);
+    }
+    default:
+      return 0.0f;
+  }
+}
+
+bool sampleDielectric(const Material& m, const SurfaceColors& c, Vec3 wi, float u, BsdfSample& s) {
+  float eta = m.relativeIOR(), cosT;
+  float f = fresnelDielectric(wi.z, eta, &cosT);
+  s.delta = true;
+  if (u < f) {
+    s.wo = mirror(wi);
+    s.weight = c.specularReflectance;
+    s.pdf = f;
+    return true;
+  }
+  float scale = wi.z > 0 ? 1.0f / eta : eta;  // tangential part scales by n_i / n_t
+  s.wo = {-wi.x * scale, -wi.y * scale, cosT};
+  // Radiance is compressed by (n_t / n_i)^2 on entering a denser medium.
+  s.weight = c.specularTransmittance * (scale * scale);
+  s.pdf = 1 - f;
+  s.eta = wi.z > 0 ? eta : 1.0f / eta;
+  return true;
+}
+
+bool sampleThinDielectric(const Material& m, const SurfaceColors& c, Vec3 wi, float u, BsdfSample& s) {
+  float r = fresnelDielectric(std::abs(wi.z), m.relativeIOR());
+  if (r < 1) r += (1 - r) * (1 - r) * r / (1 - r * r);  // inter-reflections inside the slab
+  s.delta = true;
+  if (u < r) {
+    s.wo = mirror(wi);
+    s.weight = c.specularReflectance;
+    s.pdf = r;
+  } else {
+    s.wo = -wi;
+    s.weight = c.specularTransmittance;
+    s.pdf = 1 - r;
+  }
+  return true;
+}
+
+}  // namespace
+
+Color bsdfEval(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
+  float flip = sideFlip(m, wi);
+  if (flip == 0 || isTransmissive(m.kind)) return Color(0.0f);
+  return evalFront(m, c, flipZ(wi, flip), flipZ(wo, flip));
+}
+
+float bsdfPdf(const Material& m, const SurfaceColors&, Vec3 wi, Vec3 wo) {
+  float flip = sideFlip(m, wi);
+  if (flip == 0 || isTransmissive(m.kind)) return 0.0f;
+  return pdfFront(m, flipZ(wi, flip), flipZ(wo, flip));
+}
+
+bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wiWorldSide, float u1, float u2, float u3,
+                BsdfSample& s) {
+  s = BsdfSample{};
+  if (m.kind == BsdfKind::Dielectric) return sampleDielectric(m, c, wiWorldSide, u1, s);
+  if (m.kind == BsdfKind::ThinDielectric) return sampleThinDielectric(m, c, wiWorldSide, u1, s);
+  float flip = sideFlip(m, wiWorldSide);
+  if (flip == 0) return false;
+  Vec3 wi = flipZ(wiWorldSide, flip);
+  switch (m.kind) {
+    case BsdfKind::Diffuse:
+      s.wo = squareToCosineHemisphere(u2, u3);
+      break;
+    case BsdfKind::Conductor:
+      s.wo = mirror(wi);
+      s.weight = c.specularReflectance * fresnelConductor(wi.z, m.eta, m.k);
+      s.pdf = 1;
+      s.delta = true;
+      s.wo = flipZ(s.wo, flip);
+      return true;
+    case BsdfKind::RoughConductor:
+      s.wo = reflect(wi, microfacetSampleNormal(m.distribution, m.alpha, u2, u3));
+      break;
+    case BsdfKind::Plastic: {
+      float fi = fresnelDielectric(wi.z, m.relativeIOR());
+      float ps = plasticSpecularProbability(m, fi);
+      if (u1 < ps) {
+        s.wo = flipZ(mirror(wi), flip);
+        s.weight = c.specularReflectance * (fi / ps);
+        s.pdf = ps;
+        s.delta = true;
+        return true;
+      }
+      s.wo = squareToCosineHemisphere(u2, u3);
+      break;
+    }
+    case BsdfKind::RoughPlastic: {
+      float ps = plasticSpecularProbability(m, fresnelDielectric(wi.z, m.relativeIOR()));
+      s.wo = u1 < ps ? reflect(wi, microfacetSampleNormal(m.distribution, m.alpha, u2, u3))
+                     : squareToCosineHemisphere(u2, u3);
+      break;
+    }
+    default:
+      return false;
+  }
+  if (s.wo.z <= 0) return false;
+  s.pdf = pdfFront(m, wi, s.wo);
+  if (!(s.pdf > 0)) return false;
+  s.weight = evalFront(m, c, wi, s.wo) / s.pdf;
+  s.wo = flipZ(s.wo, flip);
+  return true;
+}
+
+void finalizeMaterial(Material& m) {
+  if (m.kind == BsdfKind::Plastic || m.kind == BsdfKind::RoughPlastic) {
+    m.fdrInternal = diffuseFresnelReflectance(1.0f / m.relativeIOR());
+    float d = luminance(m.reflectance.value), s = luminance(m.specularReflectance.value);
+    m.specularSamplingWeight = d + s > 0 ? s / (d + s) : 0.5f;
+  }
+}
+
+}  // namespace erpt

@@ -1,0 +1,55 @@
+#include "erpt/camera.h"
+
+namespace erpt {
+
+namespace {
+float fovToTanHalfX(const CameraSettings& s, int width, int height) {
+  float t = std::tan(s.fovDegrees * kPi / 360.0f);
+  float aspect = float(width) / float(height);
+  FovAxis axis = s.fovAxis;
+  if (axis == FovAxis::Smaller) axis = width <= height ? FovAxis::X : FovAxis::Y;
+  if (axis == FovAxis::Larger) axis = width >= height ? FovAxis::X : FovAxis::Y;
+  switch (axis) {
+    case FovAxis::Y:
+      return t * aspect;
+    case FovAxis::Diagonal:
+      return t * float(width) / std::sqrt(float(width) * width + float(height) * height);
+    default:
+      return t;
+  }
+}
+}  // namespace
+
+Camera::Camera(const CameraSettings& s, int width, int height)
+    : toWorld_(s.toWorld),
+      toCamera_(s.toWorld.inverse()),
+      origin_(s.toWorld.point(Vec3(0.0f))),
+      tanHalfX_(fovToTanHalfX(s, width, height)),
+      aspect_(float(width) / float(height)),
+      nearClip_(s.nearClip),
+      farClip_(s.farClip),
+      width_(width),
+      height_(height) {}
+
+Camera::Ray Camera::generateRay(float filmX, float filmY) const {
+  float u = 1.0f - 2.0f * filmX / float(width_);
+  float v = (1.0f - 2.0f * filmY / float(height_)) / aspect_;
+  Vec3 local = normalize(Vec3(u * tanHalfX_, v * tanHalfX_, 1.0f));
+  Ray r;
+  r.origin = origin_;
+  r.direction = normalize(toWorld_.vector(local));
+  r.tnear = nearClip_ / local.z;
+  r.tfar = farClip_ / local.z;
+  return r;
+}
+
+bool Camera::project(Vec3 p, float& filmX, float& filmY) const {
+  Vec3 c = toCamera_.point(p);
+  if (c.z <= 0) return false;
+  float u = c.x / (c.z * tanHalfX_), v = c.y / (c.z * tanHalfX_);
+  filmX = 0.5f * (1.0f - u) * float(width_);
+  filmY = 0.5f * (1.0f - v * aspect_) * float(height_);
+  return true;
+}
+
+}  // namespace erpt

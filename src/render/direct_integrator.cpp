@@ -1,0 +1,86 @@
+// `--integrator direct`: direct illumination (emission seen directly, plus one bounce of
+// light via next-event estimation and BSDF sampling combined with the power heuristic), as
+// Mitsuba's `direct` integrator computes it. Kept as a debugging integrator.
+//
+// Wavefront layout: samples are processed in batches; each batch runs the stages
+// generate -> intersect (coherent) -> shade -> {occluded, intersect} -> gather -> film.
+#include <atomic>
+
+#include "direct_integrator.h"
+#include "erpt/film.h"
+#include "erpt/stages.h"
+#include "erpt/tracer.h"
+#include "pixel_order.h"
+
+namespace erpt {
+
+namespace {
+constexpr size_t kBatchSamples = 1 << 16;
+constexpr size_t kGrain = 256;
+}  // namespace
+
+RgbImage renderDirect(const Scene& scene, const RenderSettings& settings, RenderStats& stats) {
+  ThreadPool pool(settings.threads);
+  Tracer tracer(scene);
+  Camera camera(scene.camera, settings.width, settings.height);
+  PixelFilter filter(settings.filter);
+  LightSampler lights(scene);
+  StageContext ctx{scene, camera, filter, lights, settings.seed, settings.width, settings.spp, settings.maxDepth};
+  Film film(settings.width, settings.height);
+
+  const std::vector<uint32_t> order = tiledPixelOrder(settings.width, settings.height);
+  const size_t spp = size_t(settings.spp), total = order.size() * spp;
+  DirectSampleQueue samples;
+  RayQueue cameraRays, shadowRays, bsdfRays;
+  HitQueue cameraHits, bsdfHits;
+  std::atomic<uint64_t> rays{0}, invalid{0};
+
+  for (size_t batchStart = 0; batchStart < total; batchStart += kBatchSamples) {
+    const size_t n = std::min(kBatchSamples, total - batchStart);
+    for (auto* q : {&cameraRays, &shadowRays, &bsdfRays}) q->resize(n);
+    for (auto* q : {&cameraHits, &bsdfHits}) q->resize(n);
+    samples.resize(n);
+    // Slot j of the batch is sample (batchStart + j) % spp of pixel order[(batchStart + j) / spp].
+    for (size_t j = 0; j < n; ++j) {
+      samples.pixel[j] = order[(batchStart + j) / spp];
+      samples.sample[j] = uint32_t((batchStart + j) % spp);
+    }
+    forEachRange("generate", n, kGrain, [&](IndexRange r) { stageGenerateCameraRays(ctx, samples, cameraRays, r); },
+                 &stats.stages);
+    forEachRange("intersect", n, kGrain,
+                 [&](IndexRange r) { tracer.intersect(cameraRays, cameraHits, r, RayCoherence::Coherent); },
+                 &stats.stages);
+    forEachRange("shade", n, kGrain,
+                 [&](IndexRange r) { stageShadeDirect(ctx, cameraRays, cameraHits, samples, shadowRays, bsdfRays, r); },
+                 &stats.stages);
+    forEachRange("shadow", n, kGrain, [&](IndexRange r) { tracer.occluded(shadowRays, r); }, &stats.stages);
+    forEachRange("intersect", n, kGrain,
+                 [&](IndexRange r) { tracer.intersect(bsdfRays, bsdfHits, r, RayCoherence::Incoherent); },
+                 &stats.stages);
+    forEachRange("gather", n, kGrain,
+                 [&](IndexRange r) {
+                   uint64_t count = 0;
+                   for (size_t i = r.begin; i < r.end; ++i)
+                     count += 1 + (shadowRays.tnear[i] <= shadowRays.tfar[i]) + (bsdfRays.tnear[i] <= bsdfRays.tfar[i]);
+                   rays += count;
+                   stageGatherDirect(ctx, shadowRays, bsdfRays, bsdfHits, samples, r);
+                 },
+                 &stats.stages);
+    // Accumulate in slot order on one thread: film sums are then independent of threading.
+    for (size_t j = 0; j < n; ++j) {
+      Color c{samples.radianceR[j], samples.radianceG[j], samples.radianceB[j]};
+      if (!isFinite(c)) {
+        ++invalid;
+        continue;
+      }
+      film.add(samples.pixel[j], c);
+    }
+    if (settings.progress) settings.progress(double(batchStart + n) / double(total));
+  }
+  stats.samples = total;
+  stats.rays = rays;
+  stats.invalidSamples = invalid;
+  return film.resolve(double(spp));
+}
+
+}  // namespace erpt

@@ -1,0 +1,54 @@
+// Internal to the scene loader: walks Mitsuba XML elements and builds the Scene.
+// One method per element category; plugin-specific code lives in xml_bsdfs.cpp,
+// xml_shapes.cpp and xml_sensor.cpp.
+#pragma once
+
+#include <list>
+#include <map>
+#include <memory>
+
+#include "erpt/scene_loader.h"
+#include "xml_document.h"
+#include "xml_properties.h"
+
+namespace erpt::xml {
+
+class SceneBuilder {
+ public:
+  SceneBuilder(Scene& scene, const LoadOptions& options);
+  void loadFile(const std::string& path, int includeDepth);
+
+ private:
+  friend struct ElementReader;
+  // Scene-level elements.
+  void sceneChild(const Document& doc, const pugi::xml_node& node, int includeDepth);
+  void include(const Document& doc, const pugi::xml_node& node, int includeDepth);
+  void integrator(const Document& doc, const pugi::xml_node& node);
+  void sensor(const Document& doc, const pugi::xml_node& node);
+  void film(const Document& doc, const pugi::xml_node& node);
+  void shape(const Document& doc, const pugi::xml_node& node);
+  int emitter(const Document& doc, const pugi::xml_node& node, int shape);
+  int bsdf(const Document& doc, const pugi::xml_node& node);
+  int texture(const Document& doc, const pugi::xml_node& node);
+
+  // Reads an element's parameters; nested objects it does not know go to `children`.
+  Properties readProperties(const Document& doc, const pugi::xml_node& node,
+                            std::vector<pugi::xml_node>* children = nullptr);
+  Transform readTransform(const Document& doc, const pugi::xml_node& node);
+  std::string attribute(const Document& doc, const pugi::xml_node& node, const char* name, bool required = true);
+  std::string resolvePath(const Document& doc, const std::string& relative) const;
+  int materialById(const Document& doc, const pugi::xml_node& node, const std::string& id);
+  void appendMesh(struct MeshData& mesh, const Transform& toWorld, const Properties& props, int material,
+                  int shapeIndex, const SourceLocation& meshWhere);
+  int defaultMaterial();
+
+  Scene& scene_;
+  Defines defines_;
+  int majorVersion_ = 0;  // 0: Mitsuba 0.5/0.6 dialect, >= 2: Mitsuba 2/3 dialect
+  std::list<Document> documents_;  // kept alive: nodes point into them
+  std::map<std::string, int> materialIds_, textureIds_;
+  int defaultMaterial_ = -1;
+  bool sawSensor_ = false;
+};
+
+}  // namespace erpt::xml

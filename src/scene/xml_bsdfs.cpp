@@ -1,0 +1,168 @@
+// <bsdf> and <texture> plugins.
+#include <filesystem>
+
+#include "erpt/bsdf.h"
+#include "erpt/image_io.h"
+#include "scene_builder.h"
+
+namespace erpt::xml {
+
+namespace {
+
+MicrofacetKind readDistribution(const Properties& props, Warnings& warnings) {
+  std::string d = props.getString("distribution", "beckmann");
+  if (d == "ggx") return MicrofacetKind::GGX;
+  if (d != "beckmann") warnings.add(props.find("distribution")->where, "distribution '" + d + "' is not supported; using beckmann");
+  return MicrofacetKind::Beckmann;
+}
+
+float readAlpha(const Properties& props, Warnings& warnings) {
+  float alpha = props.getFloat("alpha", 0.1f);
+  if (props.has("alpha_u") || props.has("alpha_v")) {
+    float au = props.getFloat("alpha_u", alpha), av = props.getFloat("alpha_v", alpha);
+    warnings.add(props.where(), "anisotropic roughness is not supported; using alpha = (alpha_u + alpha_v) / 2");
+    alpha = 0.5f * (au + av);
+  }
+  if (!(alpha > 0 && alpha <= 4)) throw InputError(props.where(), "alpha must be in (0, 4]");
+  return std::max(alpha, 1e-4f);
+}
+
+}  // namespace
+
+int SceneBuilder::defaultMaterial() {
+  if (defaultMaterial_ < 0) {
+    Material m;
+    m.name = "(default diffuse)";
+    defaultMaterial_ = int(scene_.materials.size());
+    scene_.materials.push_back(m);
+  }
+  return defaultMaterial_;
+}
+
+int SceneBuilder::materialById(const Document& doc, const pugi::xml_node& node, const std::string& id) {
+  auto it = materialIds_.find(id);
+  if (it == materialIds_.end()) throw InputError(doc.where(node), "reference to unknown BSDF id '" + id + "'");
+  return it->second;
+}
+
+int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
+  std::vector<pugi::xml_node> children;
+  Properties props = readProperties(doc, node, &children);
+  std::string type = attribute(doc, node, "type");
+  std::string id = attribute(doc, node, "id", false);
+  // A nested BSDF (by value or by <ref>), for wrappers.
+  auto nested = [&]() -> int {
+    for (const pugi::xml_node& c : children) {
+      std::string tag = c.name();
+      if (tag == "bsdf") return bsdf(doc, c);
+      if (tag == "ref") return materialById(doc, c, attribute(doc, c, "id"));
+    }
+    return -1;
+  };
+  Material m;
+  m.name = id.empty() ? type : id;
+  Warnings& w = scene_.warnings;
+  if (type == "diffuse") {
+    m.kind = BsdfKind::Diffuse;
+    m.reflectance = props.getColorParam("reflectance", Color(0.5f), scene_);
+  } else if (type == "twosided") {
+    int inner = nested();
+    if (inner < 0) throw InputError(doc.where(node), "twosided needs a nested <bsdf>");
+    m = scene_.materials[inner];
+    m.name = id.empty() ? "twosided(" + m.name + ")" : id;
+    m.twoSided = true;
+  } else if (type == "conductor" || type == "roughconductor") {
+    m.kind = type == "conductor" ? BsdfKind::Conductor : BsdfKind::RoughConductor;
+    // Mitsuba 0.6 defaults to copper, Mitsuba 3 to a perfect mirror.
+    std::string metal = props.getString("material", majorVersion_ == 0 ? "Cu" : "none");
+    if (!namedConductor(metal, m.eta, m.k))
+      throw InputError(props.find("material")->where, "unknown conductor material '" + metal + "'");
+    m.eta = props.getColor("eta", m.eta);
+    m.k = props.getColor("k", m.k);
+    m.specularReflectance = props.getColorParam("specular_reflectance", Color(1.0f), scene_);
+    if (m.kind == BsdfKind::RoughConductor) {
+      m.alpha = readAlpha(props, w);
+      m.distribution = readDistribution(props, w);
+    }
+  } else if (type == "dielectric" || type == "thindielectric" || type == "roughdielectric") {
+    m.kind = type == "thindielectric" ? BsdfKind::ThinDielectric : BsdfKind::Dielectric;
+    if (type == "roughdielectric") {
+      w.add(doc.where(node), "roughdielectric is not supported yet; rendered as a smooth dielectric");
+      props.find("alpha");
+      props.find("distribution");
+    }
+    m.intIOR = props.getIOR("int_ior", 1.5046f);
+    m.extIOR = props.getIOR("ext_ior", 1.000277f);
+    m.specularReflectance = props.getColorParam("specular_reflectance", Color(1.0f), scene_);
+    m.specularTransmittance = props.getColorParam("specular_transmittance", Color(1.0f), scene_);
+  } else if (type == "plastic" || type == "roughplastic") {
+    m.kind = type == "plastic" ? BsdfKind::Plastic : BsdfKind::RoughPlastic;
+    m.intIOR = props.getIOR("int_ior", 1.49f);  // polypropylene, Mitsuba's default
+    m.extIOR = props.getIOR("ext_ior", 1.000277f);
+    m.reflectance = props.getColorParam("diffuse_reflectance", Color(0.5f), scene_);
+    m.specularReflectance = props.getColorParam("specular_reflectance", Color(1.0f), scene_);
+    m.nonlinear = props.getBool("nonlinear", false);
+    if (m.kind == BsdfKind::RoughPlastic) {
+      m.alpha = readAlpha(props, w);
+      m.distribution = readDistribution(props, w);
+    }
+  } else {
+    int inner = nested();
+    if (inner >= 0) {
+      w.add(doc.where(node), "bsdf '" + type + "' is not supported; using its nested BSDF");
+      if (!id.empty()) materialIds_[id] = inner;
+      return inner;
+    }
+    w.add(doc.where(node), "bsdf '" + type + "' is not supported; using diffuse with reflectance 0.5");
+    props = Properties(props.plugin(), props.where());  // its parameters mean nothing to diffuse
+  }
+  props.warnUnused(w);
+  finalizeMaterial(m);
+  int index = int(scene_.materials.size());
+  scene_.materials.push_back(m);
+  if (!id.empty()) materialIds_[id] = index;
+  return index;
+}
+
+int SceneBuilder::texture(const Document& doc, const pugi::xml_node& node) {
+  Properties props = readProperties(doc, node);
+  std::string type = attribute(doc, node, "type");
+  std::string id = attribute(doc, node, "id", false);
+  Texture t;
+  // uv transform: Mitsuba 3's to_uv matrix, or Mitsuba 0.6's uscale/vscale/uoffset/voffset.
+  Transform uv = props.getTransform("to_uv");
+  t.uScale = float(uv(0, 0)) * props.getFloat("uscale", 1.0f) * props.getFloat("uvscale", 1.0f);
+  t.vScale = float(uv(1, 1)) * props.getFloat("vscale", 1.0f) * props.getFloat("uvscale", 1.0f);
+  t.uOffset = float(uv(0, 3)) + props.getFloat("uoffset", 0.0f);
+  t.vOffset = float(uv(1, 3)) + props.getFloat("voffset", 0.0f);
+  if (type == "bitmap") {
+    t.kind = TextureKind::Bitmap;
+    const Property* file = props.find("filename");
+    if (!file) throw InputError(doc.where(node), "bitmap texture needs a 'filename'");
+    std::string path = resolvePath(doc, file->value);
+    if (!std::filesystem::exists(path)) throw InputError(file->where, "texture file '" + path + "' not found");
+    bool srgb = false;
+    RgbImage img = readImage(path, &srgb);
+    bool raw = props.getBool("raw", false);
+    for (Color& c : img.pixels) c = (srgb && !raw) ? srgbToLinear(c) : c;
+    t.width = img.width;
+    t.height = img.height;
+    t.texels = std::move(img.pixels);
+    for (const char* ignored : {"filter_type", "wrap_mode", "gamma"}) props.find(ignored);
+  } else if (type == "checkerboard") {
+    t.kind = TextureKind::Checkerboard;
+    t.color0 = props.getColor("color0", Color(0.4f));
+    t.color1 = props.getColor("color1", Color(0.2f));
+  } else {
+    scene_.warnings.add(doc.where(node), "texture '" + type + "' is not supported; using a grey checkerboard");
+    t.color0 = t.color1 = Color(0.5f);
+    props = Properties(props.plugin(), props.where());
+  }
+  props.warnUnused(scene_.warnings);
+  int index = int(scene_.textures.size());
+  scene_.textures.push_back(std::move(t));
+  if (!id.empty()) textureIds_[id] = index;
+  return index;
+}
+
+}  // namespace erpt::xml

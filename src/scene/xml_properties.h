@@ -1,0 +1,61 @@
+// Internal to the scene loader: the parameters of one plugin element (<float name=...>,
+// <rgb>, <transform>, nested textures...), looked up by normalized name.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "erpt/scene.h"
+#include "xml_document.h"
+
+namespace erpt::xml {
+
+struct Property {
+  std::string tag;    // float, integer, boolean, string, rgb, srgb, spectrum, point, vector, transform, texture
+  std::string value;  // after $-substitution
+  SourceLocation where;
+  Transform transform;  // tag == "transform"
+  int texture = -1;     // tag == "texture": index into Scene::textures
+  mutable bool used = false;
+};
+
+class Properties {
+ public:
+  Properties(std::string plugin, SourceLocation where) : plugin_(std::move(plugin)), where_(std::move(where)) {}
+  const std::string& plugin() const { return plugin_; }
+  const SourceLocation& where() const { return where_; }
+  void set(const std::string& name, Property p);
+  bool has(const std::string& name) const { return props_.count(name) != 0; }
+  const Property* find(const std::string& name) const;
+
+  float getFloat(const std::string& name, float fallback) const;
+  int getInt(const std::string& name, int fallback) const;
+  bool getBool(const std::string& name, bool fallback) const;
+  std::string getString(const std::string& name, const std::string& fallback) const;
+  Vec3 getPoint(const std::string& name, Vec3 fallback) const;
+  Color getColor(const std::string& name, Color fallback) const;
+  ColorParam getColorParam(const std::string& name, Color fallback, const Scene& scene) const;
+  Transform getTransform(const std::string& name) const;
+  // Index of refraction given as a number or a material name ("bk7", "water", ...).
+  float getIOR(const std::string& name, float fallback) const;
+
+  // One warning per parameter the plugin never read: a typo or an unsupported option.
+  void warnUnused(Warnings& warnings) const;
+
+ private:
+  const Property& require(const std::string& name, const char* tag) const;
+  std::string plugin_;
+  SourceLocation where_;
+  std::map<std::string, Property> props_;
+};
+
+// Colour conversions for <rgb>, <srgb>, <spectrum> values.
+Color parseColorValue(const Property& p);
+Color srgbToLinear(Color c);
+// RGB of a sampled spectrum given as (wavelength nm, value) pairs; flat spectra give grey.
+Color spectrumToRgb(const std::vector<std::pair<double, double>>& samples);
+// Named indices of refraction and conductors (Mitsuba's names); false if unknown.
+bool namedIOR(const std::string& name, float& ior);
+bool namedConductor(const std::string& name, Color& eta, Color& k);
+
+}  // namespace erpt::xml

@@ -1,0 +1,201 @@
+// <shape> and <emitter> plugins, and the checks every mesh goes through before it joins
+// the scene: finite positions, valid indices, degenerate triangles dropped and counted.
+#include <filesystem>
+
+#include "erpt/mesh_io.h"
+#include "scene_builder.h"
+
+namespace erpt::xml {
+
+void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node) {
+  std::vector<pugi::xml_node> children;
+  Properties props = readProperties(doc, node, &children);
+  std::string type = attribute(doc, node, "type");
+  SourceLocation where = doc.where(node);
+
+  // The mesh, in object space.
+  MeshData mesh;
+  SourceLocation meshWhere = where;
+  auto meshFile = [&]() {
+    const Property* file = props.find("filename");
+    if (!file) throw InputError(where, "shape '" + type + "' needs a 'filename'");
+    std::string path = resolvePath(doc, file->value);
+    if (!std::filesystem::exists(path)) throw InputError(file->where, "mesh file '" + path + "' not found");
+    meshWhere = {path, 0};
+    return path;
+  };
+  if (type == "obj") {
+    std::string path = meshFile();
+    mesh = readObj(path, props.getBool("flip_tex_coords", true), scene_.warnings);
+  } else if (type == "ply") {
+    std::string path = meshFile();
+    mesh = readPly(path, scene_.warnings);
+  } else if (type == "serialized") {
+    std::string path = meshFile();
+    mesh = readSerialized(path, props.getInt("shape_index", 0), scene_.warnings);
+  } else if (type == "rectangle") {
+    mesh = makeRectangle();
+  } else if (type == "cube") {
+    mesh = makeCube();
+  } else if (type == "disk") {
+    mesh = makeDisk();
+  } else if (type == "sphere") {
+    float radius = props.getFloat("radius", 1.0f);
+    if (!(radius > 0)) throw InputError(props.find("radius")->where, "sphere radius must be positive");
+    mesh = makeSphere(props.getPoint("center", Vec3(0.0f)), radius);
+  } else {
+    scene_.warnings.add(where, "shape '" + type + "' is not supported; skipped");
+    return;
+  }
+  if (props.getBool("face_normals", false)) mesh.normals.clear();
+  // Mitsuba 0.6 OBJ/PLY option; normals are computed from the mesh when absent anyway.
+  props.find("max_smooth_angle");
+
+  int material = -1;
+  std::vector<pugi::xml_node> emitters;
+  for (const pugi::xml_node& child : children) {
+    std::string tag = child.name();
+    if (tag == "bsdf") material = bsdf(doc, child);
+    else if (tag == "ref") material = materialById(doc, child, attribute(doc, child, "id"));
+    else if (tag == "emitter") emitters.push_back(child);
+    else scene_.warnings.add(doc.where(child), "<" + tag + "> inside <shape> is not supported; ignored");
+  }
+  if (material < 0) material = defaultMaterial();
+
+  int shapeIndex = int(scene_.shapes.size());
+  ShapeInfo info;
+  info.type = type;
+  info.id = attribute(doc, node, "id", false);
+  info.where = where;
+  info.firstTriangle = uint32_t(scene_.mesh.triangleCount());
+  scene_.shapes.push_back(info);
+  appendMesh(mesh, props.getTransform("to_world"), props, material, shapeIndex, meshWhere);
+  scene_.shapes.back().triangleCount = uint32_t(scene_.mesh.triangleCount()) - info.firstTriangle;
+
+  for (const pugi::xml_node& e : emitters) {
+    int index = emitter(doc, e, shapeIndex);
+    if (index < 0) continue;
+    for (uint32_t t = info.firstTriangle; t < scene_.mesh.triangleCount(); ++t) scene_.mesh.emitter[t] = index;
+  }
+  props.warnUnused(scene_.warnings);
+}
+
+void SceneBuilder::appendMesh(MeshData& mesh, const Transform& toWorld, const Properties& props, int material,
+                              int shapeIndex, const SourceLocation& meshWhere) {
+  TriangleSoup& soup = scene_.mesh;
+  const bool flip = props.getBool("flip_normals", false);
+  const bool hasNormals = !mesh.normals.empty(), hasUvs = !mesh.uvs.empty();
+  const uint32_t base = uint32_t(soup.vertexCount());
+  const size_t vertexCount = mesh.positions.size();
+  std::vector<uint8_t> goodNormal(vertexCount, 0);
+  for (size_t i = 0; i < vertexCount; ++i) {
+    Vec3 p = toWorld.point(mesh.positions[i]);
+    if (!isFinite(p))
+      throw InputError(scene_.shapes[shapeIndex].where, "non-finite vertex position after to_world (" +
+                                                            meshWhere.file + ", vertex " + std::to_string(i) + ")");
+    soup.px.push_back(p.x);
+    soup.py.push_back(p.y);
+    soup.pz.push_back(p.z);
+    Vec3 n(0.0f);
+    if (hasNormals) {
+      n = toWorld.normal(mesh.normals[i]);
+      float len = length(n);
+      goodNormal[i] = std::isfinite(len) && len > 0;
+      n = goodNormal[i] ? n / len * (flip ? -1.0f : 1.0f) : Vec3(0.0f);
+    }
+    soup.nx.push_back(n.x);
+    soup.ny.push_back(n.y);
+    soup.nz.push_back(n.z);
+    soup.u.push_back(hasUvs ? mesh.uvs[2 * i] : 0.0f);
+    soup.v.push_back(hasUvs ? mesh.uvs[2 * i + 1] : 0.0f);
+  }
+  size_t dropped = 0;
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+    if (a >= vertexCount || b >= vertexCount || c >= vertexCount)
+      throw InputError(meshWhere, "triangle " + std::to_string(t / 3) + " refers to a vertex that does not exist");
+    if (flip) std::swap(b, c);  // flipping the winding flips the face normal
+    Vec3 pa = soup.position(base + a);
+    Vec3 n = cross(soup.position(base + b) - pa, soup.position(base + c) - pa);
+    if (!(length(n) > 0) || !isFinite(n)) {
+      ++dropped;
+      continue;
+    }
+    soup.v0.push_back(base + a);
+    soup.v1.push_back(base + b);
+    soup.v2.push_back(base + c);
+    soup.material.push_back(material);
+    soup.emitter.push_back(-1);
+    soup.shape.push_back(shapeIndex);
+    soup.smooth.push_back(goodNormal[a] && goodNormal[b] && goodNormal[c]);
+  }
+  if (dropped > 0) {
+    scene_.droppedDegenerateTriangles += dropped;
+    scene_.warnings.add(scene_.shapes[shapeIndex].where,
+                        "dropped " + std::to_string(dropped) + " degenerate triangle(s) of this shape");
+  }
+  if (soup.triangleCount() == scene_.shapes[shapeIndex].firstTriangle)
+    scene_.warnings.add(scene_.shapes[shapeIndex].where, "shape has no triangles");
+}
+
+int SceneBuilder::emitter(const Document& doc, const pugi::xml_node& node, int shape) {
+  Properties props = readProperties(doc, node);
+  std::string type = attribute(doc, node, "type");
+  SourceLocation where = doc.where(node);
+  Emitter e;
+  if (type == "area") {
+    if (shape < 0) throw InputError(where, "an area emitter must be nested in a <shape>");
+    e.kind = EmitterKind::Area;
+    e.shape = shape;
+    e.radiance = props.getColor("radiance", Color(1.0f));
+  } else if (type == "point") {
+    e.kind = EmitterKind::Point;
+    e.radiance = props.getColor("intensity", Color(1.0f));
+    e.position = props.getTransform("to_world").point(props.getPoint("position", Vec3(0.0f)));
+  } else if (type == "constant") {
+    e.kind = EmitterKind::Constant;
+    e.radiance = props.getColor("radiance", Color(1.0f));
+    if (scene_.environment()) throw InputError(where, "only one environment emitter is supported");
+  } else {
+    scene_.warnings.add(where, "emitter '" + type + "' is not supported; ignored");
+    return -1;
+  }
+  if (shape >= 0 && type != "area") {
+    scene_.warnings.add(where, "only area emitters can be attached to a shape; ignored");
+    return -1;
+  }
+  if (e.radiance.x < 0 || e.radiance.y < 0 || e.radiance.z < 0)
+    throw InputError(where, "emitted radiance must not be negative");
+  props.find("sampling_weight");
+  props.warnUnused(scene_.warnings);
+  scene_.emitters.push_back(e);
+  return int(scene_.emitters.size()) - 1;
+}
+
+}  // namespace erpt::xml
+
+namespace erpt {
+
+Scene loadScene(const std::string& path, const LoadOptions& options) {
+  Scene scene;
+  scene.file = path;
+  xml::SceneBuilder builder(scene, options);
+  builder.loadFile(path, 0);
+  if (scene.mesh.triangleCount() == 0 && scene.emitters.empty())
+    throw InputError({path, 0}, "the scene has no geometry and no emitters");
+  return scene;
+}
+
+SurfaceColors Scene::surfaceColors(int material, float u, float v) const {
+  const Material& m = materials[material];
+  auto resolve = [&](const ColorParam& p) { return p.texture < 0 ? p.value : textures[p.texture].eval(u, v); };
+  return {resolve(m.reflectance), resolve(m.specularReflectance), resolve(m.specularTransmittance)};
+}
+
+const Emitter* Scene::environment() const {
+  for (const Emitter& e : emitters)
+    if (e.kind == EmitterKind::Constant) return &e;
+  return nullptr;
+}
+
+}  // namespace erpt

@@ -1,0 +1,38 @@
+#include "erpt/stages.h"
+#include "erpt/surface.h"
+#include "erpt/tracer.h"
+
+namespace erpt {
+
+void stageGatherDirect(const StageContext& ctx, const RayQueue& shadowRays, const RayQueue& bsdfRays,
+                       const HitQueue& bsdfHits, DirectSampleQueue& q, IndexRange range) {
+  const Emitter* env = ctx.scene.environment();
+  for (size_t i = range.begin; i < range.end; ++i) {
+    Color total{q.radianceR[i], q.radianceG[i], q.radianceB[i]};
+    // An occluded shadow ray has tfar = -inf; a disabled one carries zero contribution.
+    if (shadowRays.tfar[i] >= 0) total += Color(q.shadowR[i], q.shadowG[i], q.shadowB[i]);
+
+    Color weight{q.bsdfR[i], q.bsdfG[i], q.bsdfB[i]};
+    if (!isBlack(weight)) {
+      Vec3 dir{bsdfRays.dirX[i], bsdfRays.dirY[i], bsdfRays.dirZ[i]};
+      float pdf = q.bsdfPdf[i];  // 0: a Dirac lobe, which next-event estimation cannot produce
+      if (bsdfHits.geomID[i] == kNoHit) {
+        if (env) total += weight * env->radiance * (pdf > 0 ? powerHeuristic(pdf, ctx.lights.pdfEnvironment()) : 1.0f);
+      } else {
+        uint32_t tri = bsdfHits.primID[i];
+        Color le = ctx.lights.emitted(tri, -dir);
+        if (!isBlack(le)) {
+          SurfacePoint lp = surfaceAt(ctx.scene.mesh, tri, bsdfHits.u[i], bsdfHits.v[i]);
+          Vec3 from{q.hitX[i], q.hitY[i], q.hitZ[i]};
+          float lightPdf = ctx.lights.pdfTriangle(tri, from, lp.position, lp.geometricNormal);
+          total += weight * le * (pdf > 0 ? powerHeuristic(pdf, lightPdf) : 1.0f);
+        }
+      }
+    }
+    q.radianceR[i] = total.x;
+    q.radianceG[i] = total.y;
+    q.radianceB[i] = total.z;
+  }
+}
+
+}  // namespace erpt

@@ -1,0 +1,100 @@
+// The only file that includes Embree.
+#include <embree3/rtcore.h>
+
+#include <cstdio>
+#include <stdexcept>
+
+#include "erpt/tracer.h"
+
+namespace erpt {
+
+namespace {
+void onEmbreeError(void*, RTCError code, const char* message) {
+  if (code != RTC_ERROR_NONE) std::fprintf(stderr, "embree error %d: %s\n", int(code), message ? message : "");
+}
+}  // namespace
+
+struct Tracer::Impl {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+};
+
+Tracer::Tracer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
+  impl_->device = rtcNewDevice(nullptr);
+  if (!impl_->device) throw std::runtime_error("cannot create an Embree device");
+  rtcSetDeviceErrorFunction(impl_->device, onEmbreeError, nullptr);
+  impl_->scene = rtcNewScene(impl_->device);
+  rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+  const TriangleSoup& mesh = scene.mesh;
+  if (mesh.triangleCount() > 0) {
+    RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    // Embree may read 16 bytes from the last vertex: its own buffer is padded for that.
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                  4 * sizeof(float), mesh.vertexCount()));
+    for (size_t i = 0; i < mesh.vertexCount(); ++i) {
+      vertices[4 * i] = mesh.px[i];
+      vertices[4 * i + 1] = mesh.py[i];
+      vertices[4 * i + 2] = mesh.pz[i];
+      vertices[4 * i + 3] = 0;
+    }
+    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                                    3 * sizeof(unsigned), mesh.triangleCount()));
+    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+      indices[3 * t] = mesh.v0[t];
+      indices[3 * t + 1] = mesh.v1[t];
+      indices[3 * t + 2] = mesh.v2[t];
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(impl_->scene, geom);
+    rtcReleaseGeometry(geom);
+  }
+  rtcCommitScene(impl_->scene);
+}
+
+Tracer::~Tracer() {
+  if (impl_->scene) rtcReleaseScene(impl_->scene);
+  if (impl_->device) rtcReleaseDevice(impl_->device);
+}
+
+namespace {
+RTCRayNp rayColumns(RayQueue& q, size_t b) {
+  return RTCRayNp{q.orgX.data() + b, q.orgY.data() + b, q.orgZ.data() + b, q.tnear.data() + b,
+                  q.dirX.data() + b, q.dirY.data() + b, q.dirZ.data() + b, q.time.data() + b,
+                  q.tfar.data() + b, q.mask.data() + b, q.id.data() + b,   q.flags.data() + b};
+}
+
+RTCIntersectContext makeContext(RayCoherence coherence) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = coherence == RayCoherence::Coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                                                  : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  return ctx;
+}
+}  // namespace
+
+void Tracer::intersect(RayQueue& rays, HitQueue& hits, IndexRange range, RayCoherence coherence) const {
+  if (range.size() == 0) return;
+  size_t b = range.begin;
+  for (size_t i = b; i < range.end; ++i) hits.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHitNp rh;
+  rh.ray = rayColumns(rays, b);
+  rh.hit.Ng_x = hits.ngX.data() + b;
+  rh.hit.Ng_y = hits.ngY.data() + b;
+  rh.hit.Ng_z = hits.ngZ.data() + b;
+  rh.hit.u = hits.u.data() + b;
+  rh.hit.v = hits.v.data() + b;
+  rh.hit.primID = hits.primID.data() + b;
+  rh.hit.geomID = hits.geomID.data() + b;
+  rh.hit.instID[0] = hits.instID.data() + b;
+  RTCIntersectContext ctx = makeContext(coherence);
+  rtcIntersectNp(impl_->scene, &ctx, &rh, unsigned(range.size()));
+}
+
+void Tracer::occluded(RayQueue& rays, IndexRange range) const {
+  if (range.size() == 0) return;
+  RTCRayNp r = rayColumns(rays, range.begin);
+  RTCIntersectContext ctx = makeContext(RayCoherence::Incoherent);
+  rtcOccludedNp(impl_->scene, &ctx, &r, unsigned(range.size()));
+}
+
+}  // namespace erpt

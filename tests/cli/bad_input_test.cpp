@@ -1,0 +1,148 @@
+// Every class of bad input gives a one-line error naming file:line and the cause, a
+// non-zero exit code, and no output image (not even a partial one).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "support/test_support.h"
+
+namespace erpt {
+namespace {
+
+using test::TempDir;
+
+struct BadCase {
+  const char* name;
+  const char* sceneXml;     // written to scene.xml
+  const char* extraFile;    // "name=contents" written beside it, or nullptr
+  const char* extraArgs;    // appended to the command line
+  int line;                 // expected line in scene.xml; 0: the message names another file
+  const char* fileInMessage;  // file expected in the message when line == 0
+  const char* cause;        // expected substring of the message
+};
+
+const BadCase kCases[] = {
+    {"MalformedXml", "<scene version=\"3.0.0\">\n  <shape type=\"cube\">\n</scene>\n", nullptr, "", 3, nullptr,
+     "malformed XML"},
+    {"MissingMeshFile",
+     "<scene version=\"3.0.0\">\n  <shape type=\"obj\">\n    <string name=\"filename\" value=\"nope.obj\"/>\n  "
+     "</shape>\n</scene>\n",
+     nullptr, "", 3, nullptr, "not found"},
+    {"MissingTextureFile",
+     "<scene version=\"3.0.0\">\n<shape type=\"cube\"><bsdf type=\"diffuse\">\n<texture type=\"bitmap\" "
+     "name=\"reflectance\">\n<string name=\"filename\" value=\"missing.png\"/>\n</texture></bsdf></shape>\n</scene>\n",
+     nullptr, "", 4, nullptr, "not found"},
+    {"BadNumber",
+     "<scene version=\"3.0.0\">\n  <sensor type=\"perspective\">\n    <float name=\"fov\" value=\"4o\"/>\n  "
+     "</sensor>\n  <shape type=\"cube\"/>\n</scene>\n",
+     nullptr, "", 3, nullptr, "bad number '4o'"},
+    {"NonFiniteValue",
+     "<scene version=\"3.0.0\">\n  <shape type=\"sphere\">\n    <float name=\"radius\" value=\"inf\"/>\n  "
+     "</shape>\n</scene>\n",
+     nullptr, "", 3, nullptr, "non-finite value"},
+    {"NanInTransform",
+     "<scene version=\"3.0.0\">\n  <shape type=\"cube\">\n    <transform name=\"to_world\">\n      <translate "
+     "x=\"nan\"/>\n    </transform>\n  </shape>\n</scene>\n",
+     nullptr, "", 4, nullptr, "non-finite value"},
+    {"UndefinedParameter",
+     "<scene version=\"3.0.0\">\n  <shape type=\"sphere\">\n    <float name=\"radius\" value=\"$r\"/>\n  "
+     "</shape>\n</scene>\n",
+     nullptr, "", 3, nullptr, "undefined parameter '$r'"},
+    {"UnknownReference", "<scene version=\"3.0.0\">\n  <shape type=\"cube\">\n    <ref id=\"nothing\"/>\n  </shape>\n</scene>\n",
+     nullptr, "", 3, nullptr, "unknown BSDF id 'nothing'"},
+    {"UnknownTransformOperation",
+     "<scene version=\"3.0.0\">\n  <shape type=\"cube\">\n    <transform name=\"to_world\">\n      <shear "
+     "x=\"1\"/>\n    </transform>\n  </shape>\n</scene>\n",
+     nullptr, "", 4, nullptr, "unknown transform operation"},
+    {"AbsurdFilmSize",
+     "<scene version=\"3.0.0\">\n  <sensor type=\"perspective\">\n    <film type=\"hdrfilm\">\n      <integer "
+     "name=\"width\" value=\"-5\"/>\n    </film>\n  </sensor>\n  <shape type=\"cube\"/>\n</scene>\n",
+     nullptr, "", 3, nullptr, "film size"},
+    {"IncludeCycle", "<scene version=\"3.0.0\">\n  <include filename=\"scene.xml\"/>\n</scene>\n", nullptr, "", 2, nullptr,
+     "include cycle"},
+    {"WrongRoot", "<?xml version=\"1.0\"?>\n<scenery version=\"3.0.0\"/>\n", nullptr, "", 2, nullptr, "expected <scene>"},
+    {"MalformedPly",
+     "<scene version=\"3.0.0\">\n  <shape type=\"ply\">\n    <string name=\"filename\" value=\"m.ply\"/>\n  "
+     "</shape>\n</scene>\n",
+     "m.ply=ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float "
+     "z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 x\n0 1 0\n3 0 1 2\n",
+     "", 0, "m.ply:11", "bad number"},
+    {"NonFiniteObjVertex",
+     "<scene version=\"3.0.0\">\n  <shape type=\"obj\">\n    <string name=\"filename\" value=\"m.obj\"/>\n  "
+     "</shape>\n</scene>\n",
+     "m.obj=v 0 0 0\nv 1 0 0\nv 0 1e999 0\nf 1 2 3\n", "", 0, "m.obj:3", "non-finite vertex position"},
+    {"BadDefineOnCommandLine", "<scene version=\"3.0.0\">\n  <shape type=\"cube\"/>\n</scene>\n", nullptr, "-D novalue",
+     -1, nullptr, "-D expects name=value"},
+};
+
+class BadInput : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(BadInput, ClearErrorNonZeroExitNoOutput) {
+  const BadCase& c = GetParam();
+  TempDir dir;
+  std::string scene = dir.write("scene.xml", c.sceneXml);
+  if (c.extraFile) {
+    std::string spec = c.extraFile;
+    size_t eq = spec.find('=');
+    dir.write(spec.substr(0, eq), spec.substr(eq + 1));
+  }
+  std::string out = dir.file("out.exr");
+  test::CommandResult r = test::runCli("render -q " + scene + " -o " + out + " --spp 1 " + c.extraArgs);
+  EXPECT_NE(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find(c.cause), std::string::npos) << r.output;
+  if (c.line > 0) {
+    EXPECT_NE(r.output.find(scene + ":" + std::to_string(c.line) + ": error:"), std::string::npos) << r.output;
+  } else if (c.line == 0) {
+    EXPECT_NE(r.output.find(c.fileInMessage), std::string::npos) << r.output;
+  }
+  // The error is one line.
+  EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    std::string name = entry.path().filename().string();
+    EXPECT_TRUE(name.find(".exr") == std::string::npos && name.find(".png") == std::string::npos)
+        << "unexpected output file " << name;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Cli, BadInput, ::testing::ValuesIn(kCases),
+                         [](const ::testing::TestParamInfo<BadCase>& info) { return std::string(info.param.name); });
+
+TEST(BadInputCli, MissingSceneFile) {
+  TempDir dir;
+  test::CommandResult r = test::runCli("render -q " + dir.file("none.xml") + " -o " + dir.file("o.exr"));
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find(dir.file("none.xml") + ": error: cannot open scene file"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("o.exr")));
+}
+
+TEST(BadInputCli, AbsurdOptionsAreRejected) {
+  TempDir dir;
+  std::string scene = dir.write("s.xml", "<scene version=\"3.0.0\"><shape type=\"cube\"/></scene>");
+  for (const char* args : {"--spp 0", "--spp -3", "--width 0", "--threads -1", "--max-depth -7", "--max-depth 0",
+                           "--filter lanczos", "--integrator bogus"}) {
+    test::CommandResult r = test::runCli("render -q " + scene + " -o " + dir.file("o.exr") + " " + args);
+    EXPECT_NE(r.exitCode, 0) << args << ": " << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("o.exr"))) << args;
+  }
+  test::CommandResult r = test::runCli("render -q " + scene + " -o " + dir.file("o.png"));
+  EXPECT_NE(r.exitCode, 0);
+  r = test::runCli("render -q " + scene + " -o " + dir.file("no/such/dir/o.exr"));
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("does not exist"), std::string::npos) << r.output;
+}
+
+TEST(BadInputCli, UnsupportedPluginIsAWarningNotAnError) {
+  TempDir dir;
+  std::string scene = dir.write("s.xml",
+                                "<scene version=\"3.0.0\">\n<shape type=\"cube\"/>\n<emitter type=\"sunsky\"/>\n"
+                                "<sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/>"
+                                "<integer name=\"height\" value=\"8\"/></film></sensor>\n</scene>\n");
+  test::CommandResult r = test::runCli("render -q " + scene + " -o " + dir.file("o.exr") + " --spp 1");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find(scene + ":3: warning: emitter 'sunsky' is not supported"), std::string::npos) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("o.exr")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("o.png")));
+}
+
+}  // namespace
+}  // namespace erpt

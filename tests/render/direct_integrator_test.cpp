@@ -1,0 +1,108 @@
+// The direct-lighting integrator against closed-form answers, and determinism.
+#include <gtest/gtest.h>
+
+#include "erpt/camera.h"
+#include "erpt/render.h"
+#include "erpt/scene_loader.h"
+#include "support/test_support.h"
+
+namespace erpt {
+namespace {
+
+using test::TempDir;
+
+Color meanOf(const RgbImage& img) {
+  double s[3] = {0, 0, 0};
+  for (const Color& c : img.pixels)
+    for (int i = 0; i < 3; ++i) s[i] += c[i];
+  double n = double(img.pixels.size());
+  return Color(float(s[0] / n), float(s[1] / n), float(s[2] / n));
+}
+
+// The camera sits inside a sphere whose inner side emits Le and reflects diffusely with
+// albedo a. Direct lighting sees Le plus one bounce of the enclosure's emission:
+// irradiance pi*Le, reflected radiance a*Le, so L = Le * (1 + a) at every pixel.
+std::string furnaceScene(const char* bsdf) {
+  return std::string(R"(<scene version="3.0.0">
+    <sensor type="perspective"><float name="fov" value="60"/>
+      <transform name="to_world"><lookat origin="0.2,0.1,0" target="1,0.3,0.2" up="0,1,0"/></transform>
+      <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="16"/></film></sensor>
+    <shape type="sphere"><boolean name="flip_normals" value="true"/>)") +
+         bsdf + R"(
+      <emitter type="area"><rgb name="radiance" value="1, 0.5, 2"/></emitter></shape>
+  </scene>)";
+}
+
+TEST(StatisticalDirect, FurnaceSphereMatchesClosedForm) {
+  TempDir dir;
+  Scene scene = loadScene(dir.write("s.xml", furnaceScene(R"(<bsdf type="diffuse"><rgb name="reflectance" value="0.5, 0.8, 0.3"/></bsdf>)")));
+  RenderSettings s;
+  s.spp = 64;
+  s.seed = 3;
+  RenderStats stats;
+  Color mean = meanOf(render(scene, s, stats));
+  EXPECT_NEAR(mean.x, 1.0f * 1.5f, 0.01f * 1.5f);
+  EXPECT_NEAR(mean.y, 0.5f * 1.8f, 0.01f * 0.9f);
+  EXPECT_NEAR(mean.z, 2.0f * 1.3f, 0.01f * 2.6f);
+  EXPECT_EQ(stats.invalidSamples, 0u);
+}
+
+TEST(Direct, PointLightOverDiffusePlaneMatchesInverseSquareLaw) {
+  // Camera above a diffuse plane (albedo a) lit by a point light of intensity I at height h:
+  // L(p) = a/pi * I * cos(theta) / d^2 with cos(theta) = h / d. Next-event estimation of a
+  // point light has no noise, so each pixel must match to within the pixel footprint.
+  TempDir dir;
+  const float a = 0.6f, I = 5.0f, h = 1.0f;
+  Scene scene = loadScene(dir.write("s.xml", R"(<scene version="3.0.0">
+    <sensor type="perspective"><float name="fov" value="50"/>
+      <transform name="to_world"><lookat origin="0,0,3" target="0,0,0" up="0,1,0"/></transform>
+      <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="32"/>
+        <rfilter type="box"/></film></sensor>
+    <shape type="rectangle"><transform name="to_world"><scale value="4"/></transform>
+      <bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></shape>
+    <emitter type="point"><point name="position" value="0.3, -0.2, 1"/><rgb name="intensity" value="5"/></emitter>
+  </scene>)"));
+  RenderSettings s;
+  s.spp = 16;
+  RenderStats stats;
+  RgbImage img = render(scene, s, stats);
+  Camera cam(scene.camera, 32, 32);
+  int checked = 0;
+  for (int y = 4; y < 28; y += 3)
+    for (int x = 4; x < 28; x += 3) {
+      Camera::Ray r = cam.generateRay(x + 0.5f, y + 0.5f);
+      Vec3 p = r.origin + r.direction * (-r.origin.z / r.direction.z);
+      Vec3 d = Vec3(0.3f, -0.2f, h) - p;
+      float dist2 = dot(d, d);
+      float expected = a / kPi * I * (h / std::sqrt(dist2)) / dist2;
+      EXPECT_NEAR(img.at(x, y).y, expected, 0.01f * expected) << x << "," << y;
+      ++checked;
+    }
+  EXPECT_EQ(checked, 64);
+}
+
+TEST(Direct, SameSeedSameImageForAnyThreadCount) {
+  Scene scene = loadScene(test::sourceDir() + "/scenes/default/scene.xml");
+  RenderSettings s;
+  s.width = 48;
+  s.height = 48;
+  s.spp = 4;
+  s.seed = 11;
+  RenderStats a, b;
+  s.threads = 1;
+  RgbImage one = render(scene, s, a);
+  s.threads = 2;
+  RgbImage two = render(scene, s, b);
+  ASSERT_EQ(one.pixels.size(), two.pixels.size());
+  for (size_t i = 0; i < one.pixels.size(); ++i) {
+    ASSERT_EQ(one.pixels[i].x, two.pixels[i].x) << i;
+    ASSERT_EQ(one.pixels[i].y, two.pixels[i].y) << i;
+    ASSERT_EQ(one.pixels[i].z, two.pixels[i].z) << i;
+  }
+  s.seed = 12;
+  RgbImage other = render(scene, s, b);
+  EXPECT_NE(meanOf(other).x, meanOf(one).x);  // the seed matters
+}
+
+}  // namespace
+}  // namespace erpt

@@ -1,0 +1,255 @@
+// Scene loading: both Mitsuba dialects, the shared Cornell box, transforms, defaults and -D.
+#include <gtest/gtest.h>
+
+#include "erpt/scene_loader.h"
+#include "support/test_support.h"
+
+namespace erpt {
+namespace {
+
+using test::TempDir;
+
+Vec3 vertex(const Scene& s, uint32_t i) { return s.mesh.position(i); }
+
+TEST(Loader, SharedCornellBox) {
+  Scene s = loadScene(test::sharedScenesDir() + "/cornell-box/scene.xml");
+  EXPECT_EQ(s.mesh.triangleCount(), 36u);
+  EXPECT_EQ(s.shapes.size(), 8u);
+  ASSERT_EQ(s.emitters.size(), 1u);
+  EXPECT_EQ(s.emitters[0].kind, EmitterKind::Area);
+  EXPECT_FLOAT_EQ(s.emitters[0].radiance.x, 17.0f);
+  EXPECT_FLOAT_EQ(s.emitters[0].radiance.z, 4.0f);
+  EXPECT_EQ(s.film.width, 1024);
+  EXPECT_EQ(s.film.height, 1024);
+  EXPECT_EQ(s.film.filter, FilterKind::Tent);
+  EXPECT_EQ(s.integrator.spp, 64);
+  EXPECT_EQ(s.integrator.maxDepth, 65);
+  EXPECT_FLOAT_EQ(s.camera.fovDegrees, 19.5f);
+  EXPECT_TRUE(s.warnings.messages.empty()) << s.warnings.messages.front();
+  // The light's triangles face down into the room.
+  for (uint32_t t = 0; t < s.mesh.triangleCount(); ++t)
+    if (s.mesh.emitter[t] >= 0) {
+      EXPECT_LT(normalize(s.mesh.faceNormal(t)).y, -0.99f);
+    }
+  // Every material of the walls is two-sided diffuse.
+  const Material& floor = s.materials[s.mesh.material[s.shapes[0].firstTriangle]];
+  EXPECT_EQ(floor.kind, BsdfKind::Diffuse);
+  EXPECT_TRUE(floor.twoSided);
+  EXPECT_NEAR(floor.reflectance.value.x, 0.725f, 1e-6f);
+}
+
+TEST(Loader, DefinesOverrideDefaults) {
+  LoadOptions o;
+  o.defines = {{"spp", "7"}, {"resx", "32"}, {"resy", "16"}};
+  Scene s = loadScene(test::sharedScenesDir() + "/cornell-box/scene.xml", o);
+  EXPECT_EQ(s.integrator.spp, 7);
+  EXPECT_EQ(s.film.width, 32);
+  EXPECT_EQ(s.film.height, 16);
+}
+
+// The same small scene in the two dialects must load to the same thing.
+const char* kScene06 = R"(<?xml version="1.0"?>
+<scene version="0.6.0">
+  <integrator type="path"><integer name="maxDepth" value="5"/></integrator>
+  <sensor type="perspective">
+    <float name="fov" value="40"/>
+    <string name="fovAxis" value="y"/>
+    <float name="nearClip" value="0.5"/>
+    <transform name="toWorld"><lookat origin="0,0,5" target="0,0,0" up="0,1,0"/></transform>
+    <sampler type="independent"><integer name="sampleCount" value="16"/></sampler>
+    <film type="hdrfilm"><integer name="width" value="40"/><integer name="height" value="30"/>
+      <rfilter type="box"/></film>
+  </sensor>
+  <bsdf type="dielectric" id="glass"><float name="intIOR" value="1.33"/></bsdf>
+  <shape type="rectangle">
+    <transform name="toWorld"><scale x="2" y="3"/><translate x="1"/></transform>
+    <ref id="glass"/>
+  </shape>
+</scene>)";
+
+const char* kScene3 = R"(<scene version="3.0.0">
+  <integrator type="path"><integer name="max_depth" value="5"/></integrator>
+  <sensor type="perspective">
+    <float name="fov" value="40"/>
+    <string name="fov_axis" value="y"/>
+    <float name="near_clip" value="0.5"/>
+    <transform name="to_world"><lookat origin="0,0,5" target="0,0,0" up="0,1,0"/></transform>
+    <sampler type="independent"><integer name="sample_count" value="16"/></sampler>
+    <film type="hdrfilm"><integer name="width" value="40"/><integer name="height" value="30"/>
+      <rfilter type="box"/></film>
+  </sensor>
+  <bsdf type="dielectric" id="glass"><float name="int_ior" value="1.33"/></bsdf>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="2, 3, 1"/><translate value="1 0 0"/></transform>
+    <ref id="glass"/>
+  </shape>
+</scene>)";
+
+TEST(Loader, BothDialectsAgree) {
+  TempDir dir;
+  for (const char* text : {kScene06, kScene3}) {
+    Scene s = loadScene(dir.write("scene.xml", text));
+    EXPECT_TRUE(s.warnings.messages.empty()) << s.warnings.messages.front();
+    EXPECT_EQ(s.integrator.maxDepth, 5);
+    EXPECT_EQ(s.integrator.spp, 16);
+    EXPECT_EQ(s.film.width, 40);
+    EXPECT_EQ(s.film.filter, FilterKind::Box);
+    EXPECT_EQ(s.camera.fovAxis, FovAxis::Y);
+    EXPECT_FLOAT_EQ(s.camera.nearClip, 0.5f);
+    ASSERT_EQ(s.mesh.triangleCount(), 2u);
+    EXPECT_NEAR(s.materials[s.mesh.material[0]].intIOR, 1.33f, 1e-6f);
+    // Scale then translate (document order): x in [-1, 3], y in [-3, 3].
+    float minX = 1e9f, maxX = -1e9f, maxY = -1e9f;
+    for (uint32_t i = 0; i < s.mesh.vertexCount(); ++i) {
+      minX = std::min(minX, vertex(s, i).x);
+      maxX = std::max(maxX, vertex(s, i).x);
+      maxY = std::max(maxY, vertex(s, i).y);
+    }
+    EXPECT_FLOAT_EQ(minX, -1.0f);
+    EXPECT_FLOAT_EQ(maxX, 3.0f);
+    EXPECT_FLOAT_EQ(maxY, 3.0f);
+    // lookat from +z towards the origin: the camera's +z axis is world -z.
+    Vec3 forward = s.camera.toWorld.vector(Vec3(0, 0, 1));
+    EXPECT_NEAR(forward.z, -1.0f, 1e-6f);
+  }
+}
+
+TEST(Loader, TransformsComposeInDocumentOrder) {
+  TempDir dir;
+  // Rotate 90 degrees about z, then translate by x=+5: the point (1,0,0) goes to (5,1,0).
+  std::string xml = R"(<scene version="3.0.0">
+    <shape type="obj"><string name="filename" value="tri.obj"/>
+      <transform name="to_world"><rotate z="1" angle="90"/><translate x="5"/></transform></shape>
+  </scene>)";
+  dir.write("tri.obj", "v 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\n");
+  Scene s = loadScene(dir.write("s.xml", xml));
+  ASSERT_EQ(s.mesh.vertexCount(), 3u);
+  EXPECT_NEAR(vertex(s, 0).x, 5.0f, 1e-5f);
+  EXPECT_NEAR(vertex(s, 0).y, 1.0f, 1e-5f);
+  EXPECT_NEAR(vertex(s, 0).z, 0.0f, 1e-5f);
+}
+
+TEST(Loader, MatrixIsRowMajor) {
+  TempDir dir;
+  std::string xml = R"(<scene version="3.0.0">
+    <shape type="obj"><string name="filename" value="tri.obj"/>
+      <transform name="to_world"><matrix value="1 0 0 10  0 1 0 20  0 0 1 30  0 0 0 1"/></transform></shape>
+  </scene>)";
+  dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  Scene s = loadScene(dir.write("s.xml", xml));
+  EXPECT_FLOAT_EQ(vertex(s, 0).x, 10.0f);
+  EXPECT_FLOAT_EQ(vertex(s, 0).y, 20.0f);
+  EXPECT_FLOAT_EQ(vertex(s, 0).z, 30.0f);
+}
+
+TEST(Loader, IncludeDefaultsAndReferences) {
+  TempDir dir;
+  dir.write("materials.xml", R"(<scene version="3.0.0">
+      <bsdf type="roughconductor" id="metal"><string name="material" value="Au"/>
+        <float name="alpha" value="$rough"/><string name="distribution" value="ggx"/></bsdf>
+    </scene>)");
+  std::string xml = R"(<scene version="3.0.0">
+    <default name="rough" value="0.25"/>
+    <include filename="materials.xml"/>
+    <shape type="cube"><ref id="metal"/></shape>
+  </scene>)";
+  std::string path = dir.write("s.xml", xml);
+  Scene s = loadScene(path);
+  const Material& m = s.materials[s.mesh.material[0]];
+  EXPECT_EQ(m.kind, BsdfKind::RoughConductor);
+  EXPECT_EQ(m.distribution, MicrofacetKind::GGX);
+  EXPECT_FLOAT_EQ(m.alpha, 0.25f);
+  EXPECT_EQ(s.mesh.triangleCount(), 12u);
+  LoadOptions o;
+  o.defines = {{"rough", "0.5"}};
+  EXPECT_FLOAT_EQ(loadScene(path, o).materials[0].alpha, 0.5f);
+}
+
+TEST(Loader, UnsupportedPluginWarnsWithLocationAndFallsBack) {
+  TempDir dir;
+  std::string xml = "<scene version=\"3.0.0\">\n"
+                    "  <shape type=\"cube\">\n"
+                    "    <bsdf type=\"principled\"/>\n"
+                    "  </shape>\n"
+                    "  <shape type=\"hair\"/>\n"
+                    "  <medium type=\"homogeneous\"/>\n"
+                    "</scene>\n";
+  std::string path = dir.write("s.xml", xml);
+  Scene s = loadScene(path);
+  ASSERT_EQ(s.warnings.messages.size(), 3u);
+  EXPECT_NE(s.warnings.messages[0].find(path + ":3: warning: bsdf 'principled' is not supported; using diffuse"),
+            std::string::npos)
+      << s.warnings.messages[0];
+  EXPECT_NE(s.warnings.messages[1].find(path + ":5:"), std::string::npos) << s.warnings.messages[1];
+  EXPECT_NE(s.warnings.messages[2].find(path + ":6:"), std::string::npos) << s.warnings.messages[2];
+  EXPECT_EQ(s.materials[s.mesh.material[0]].kind, BsdfKind::Diffuse);
+}
+
+TEST(Loader, ShapesAndFlipNormals) {
+  TempDir dir;
+  std::string xml = R"(<scene version="3.0.0">
+    <shape type="rectangle"><boolean name="flip_normals" value="true"/></shape>
+    <shape type="disk"/>
+    <shape type="sphere"><float name="radius" value="2"/><point name="center" value="1, 0, 0"/></shape>
+  </scene>)";
+  Scene s = loadScene(dir.write("s.xml", xml));
+  ASSERT_EQ(s.shapes.size(), 3u);
+  EXPECT_LT(normalize(s.mesh.faceNormal(0)).z, -0.999f);  // flipped rectangle faces -z
+  EXPECT_GT(normalize(s.mesh.faceNormal(s.shapes[1].firstTriangle)).z, 0.999f);
+  // Sphere: every vertex at distance 2 from (1,0,0), face normals point outwards, and the
+  // tessellation is fine enough that no facet is visible (edge angle < 1 degree).
+  const ShapeInfo& sphere = s.shapes[2];
+  EXPECT_GT(sphere.triangleCount, 100000u);
+  for (uint32_t t = sphere.firstTriangle; t < sphere.firstTriangle + sphere.triangleCount; t += 97) {
+    Vec3 p = s.mesh.position(s.mesh.v0[t]);
+    EXPECT_NEAR(length(p - Vec3(1, 0, 0)), 2.0f, 1e-5f);
+    EXPECT_GT(dot(s.mesh.faceNormal(t), p - Vec3(1, 0, 0)), 0.0f);
+  }
+}
+
+TEST(Loader, DegenerateTrianglesAreDroppedAndCounted) {
+  TempDir dir;
+  dir.write("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\nf 1 1 3\n");
+  Scene s = loadScene(dir.write("s.xml", R"(<scene version="3.0.0"><shape type="obj">
+      <string name="filename" value="m.obj"/></shape></scene>)"));
+  EXPECT_EQ(s.mesh.triangleCount(), 1u);
+  EXPECT_EQ(s.droppedDegenerateTriangles, 2u);
+  ASSERT_EQ(s.warnings.messages.size(), 1u);
+  EXPECT_NE(s.warnings.messages[0].find("dropped 2 degenerate"), std::string::npos);
+}
+
+TEST(Loader, SpectraAndSrgbBecomeRgb) {
+  TempDir dir;
+  Scene s = loadScene(dir.write("s.xml", R"(<scene version="0.6.0">
+      <shape type="cube"><bsdf type="diffuse"><spectrum name="reflectance" value="400:0.5, 500:0.5, 600:0.5, 700:0.5"/></bsdf></shape>
+      <shape type="cube"><bsdf type="diffuse"><srgb name="reflectance" value="#ffffff"/></bsdf></shape>
+      <shape type="cube"><bsdf type="diffuse"><spectrum name="reflectance" value="0.25"/></bsdf></shape>
+    </scene>)"));
+  // A flat spectrum is grey (up to the missing tails outside 400-700 nm).
+  Color flat = s.materials[0].reflectance.value;
+  EXPECT_NEAR(flat.x, 0.5f, 0.03f);
+  EXPECT_NEAR(flat.y, 0.5f, 0.03f);
+  EXPECT_NEAR(flat.z, 0.5f, 0.03f);
+  EXPECT_NEAR(s.materials[1].reflectance.value.y, 1.0f, 1e-5f);
+  EXPECT_FLOAT_EQ(s.materials[2].reflectance.value.z, 0.25f);
+}
+
+TEST(Loader, CheckerboardTextureWithUvScale) {
+  TempDir dir;
+  Scene s = loadScene(dir.write("s.xml", R"(<scene version="3.0.0">
+      <shape type="rectangle"><bsdf type="diffuse">
+        <texture type="checkerboard" name="reflectance">
+          <rgb name="color0" value="1, 0, 0"/><rgb name="color1" value="0, 0, 1"/>
+          <transform name="to_uv"><scale x="2" y="2"/></transform>
+        </texture></bsdf></shape>
+    </scene>)"));
+  ASSERT_EQ(s.textures.size(), 1u);
+  int m = s.mesh.material[0];
+  // With to_uv scale 2 there are 4x4 checks over the unit square.
+  EXPECT_FLOAT_EQ(s.surfaceColors(m, 0.1f, 0.1f).reflectance.x, 1.0f);
+  EXPECT_FLOAT_EQ(s.surfaceColors(m, 0.3f, 0.1f).reflectance.z, 1.0f);
+  EXPECT_FLOAT_EQ(s.surfaceColors(m, 0.3f, 0.3f).reflectance.x, 1.0f);
+}
+
+}  // namespace
+}  // namespace erpt
