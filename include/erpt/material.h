@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "erpt/texture.h"
 
@@ -28,6 +29,7 @@ struct Material {
   // Derived when the scene is finalized:
   float fdrInternal = 0;             // plastic: diffuse Fresnel reflectance seen from inside
   float specularSamplingWeight = 0;  // plastic: share of samples given to the coat
+  std::vector<float> coatTransmittance;  // roughplastic: 1 - coat albedo over cos(theta) in [0, 1]
 
   float relativeIOR() const { return intIOR / extIOR; }
   bool isPureSpecular() const {

@@ -1,6 +1,8 @@
 // The BSDFs: one switch per entry point over the material kind.
 #include "erpt/bsdf.h"
 
+#include <algorithm>
+
 #include "erpt/warp.h"
 
 namespace erpt {
@@ -27,17 +29,27 @@ float plasticSpecularProbability(const Material& m, float fresnelIn) {
   return s + d > 0 ? s / (s + d) : 0.0f;
 }
 
-// Diffuse base of (rough)plastic under a smooth-Fresnel coat (Mitsuba's plastic model; for
-// roughplastic the macro-surface Fresnel stands in for Mitsuba's tabulated rough one).
+// Fraction of light that crosses the coat at incidence cos(theta) (into or out of the
+// diffuse base): 1 - Fresnel for the smooth coat; for the rough coat, 1 - the microfacet
+// lobe's albedo, tabulated by finalizeMaterial (Mitsuba tabulates the same quantity).
+float coatTransmittance(const Material& m, float cosTheta) {
+  if (m.kind != BsdfKind::RoughPlastic || m.coatTransmittance.empty())
+    return 1 - fresnelDielectric(cosTheta, m.relativeIOR());
+  float x = std::clamp(cosTheta, 0.0f, 1.0f) * float(m.coatTransmittance.size() - 1);
+  size_t i = std::min(size_t(x), m.coatTransmittance.size() - 2);
+  float t = x - float(i);
+  return m.coatTransmittance[i] * (1 - t) + m.coatTransmittance[i + 1] * t;
+}
+
+// Diffuse base of (rough)plastic under a dielectric coat (Mitsuba's plastic model).
 Color plasticDiffuse(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
   float eta = m.relativeIOR();
-  float fi = fresnelDielectric(wi.z, eta), fo = fresnelDielectric(wo.z, eta);
   Color diff = c.reflectance;
   if (m.nonlinear)
     diff = diff / (Color(1.0f) - diff * m.fdrInternal);
   else
     diff = diff / (1.0f - m.fdrInternal);
-  return diff * ((1 - fi) * (1 - fo) * wo.z * kInvPi / (eta * eta));
+  return diff * (coatTransmittance(m, wi.z) * coatTransmittance(m, wo.z) * wo.z * kInvPi / (eta * eta));
 }
 
 // Microfacet reflection lobe, f * cos(wo), with Fresnel `fres` at the half vector.
@@ -84,7 +96,7 @@ float pdfFront(const Material& m, Vec3 wi, Vec3 wo) {
     case BsdfKind::Plastic:
       return (1 - plasticSpecularProbability(m, fresnelDielectric(wi.z, m.relativeIOR()))) * cosineHemispherePdf(wo);
     case BsdfKind::RoughPlastic: {
-      float ps = plasticSpecularProbability(m, fresnelDielectric(wi.z, m.relativeIOR()));
+      float ps = plasticSpecularProbability(m, 1 - coatTransmittance(m, wi.z));
       return ps * microfacetReflectionPdf(m, wi, wo) + (1 - ps) * cosineHemispherePdf(wo);
     }
     default:
@@ -177,7 +189,7 @@ bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wiWorldSide, flo
       break;
     }
     case BsdfKind::RoughPlastic: {
-      float ps = plasticSpecularProbability(m, fresnelDielectric(wi.z, m.relativeIOR()));
+      float ps = plasticSpecularProbability(m, 1 - coatTransmittance(m, wi.z));
       s.wo = u1 < ps ? reflect(wi, microfacetSampleNormal(m.distribution, m.alpha, u2, u3))
                      : squareToCosineHemisphere(u2, u3);
       break;
@@ -193,11 +205,50 @@ bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wiWorldSide, flo
   return true;
 }
 
+namespace {
+
+// Albedo of the rough coat's specular lobe alone (white tint) at incidence cos(theta):
+// importance-sampled with a stratified grid of microfacet normals, so the estimate is smooth
+// and deterministic.
+float roughCoatAlbedo(const Material& m, float cosTheta) {
+  const int n = 64;
+  Vec3 wi{std::sqrt(std::max(0.0f, 1 - cosTheta * cosTheta)), 0.0f, cosTheta};
+  double sum = 0;
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b) {
+      Vec3 h = microfacetSampleNormal(m.distribution, m.alpha, (a + 0.5f) / n, (b + 0.5f) / n);
+      Vec3 wo = reflect(wi, h);
+      if (wo.z <= 0) continue;
+      float pdf = microfacetReflectionPdf(m, wi, wo);
+      if (pdf > 0) sum += microfacetReflection(m, wi, wo, Color(1.0f), false).x / pdf;
+    }
+  return float(sum / (n * n));
+}
+
+}  // namespace
+
 void finalizeMaterial(Material& m) {
   if (m.kind == BsdfKind::Plastic || m.kind == BsdfKind::RoughPlastic) {
     m.fdrInternal = diffuseFresnelReflectance(1.0f / m.relativeIOR());
     float d = luminance(m.reflectance.value), s = luminance(m.specularReflectance.value);
     m.specularSamplingWeight = d + s > 0 ? s / (d + s) : 0.5f;
+  }
+  if (m.kind == BsdfKind::RoughPlastic) {
+    const int size = 65;
+    m.coatTransmittance.resize(size);
+    for (int i = 0; i < size; ++i)
+      m.coatTransmittance[i] = std::clamp(1.0f - roughCoatAlbedo(m, std::max(1e-3f, float(i) / (size - 1))), 0.0f, 1.0f);
+    // Light bouncing inside the coat returns to the base with the hemispherical average of
+    // the same transmittance; 1 - Fdr_int = (1 - Fdr_ext) / eta^2 keeps a white base at
+    // albedo 1 (the identity holds exactly for the smooth coat).
+    double avg = 0;
+    const int steps = 1024;
+    for (int i = 0; i < steps; ++i) {
+      float mu = (i + 0.5f) / steps;
+      avg += 2.0 * mu * coatTransmittance(m, mu) / steps;
+    }
+    float eta = m.relativeIOR();
+    m.fdrInternal = float(1.0 - avg / (eta * eta));
   }
 }
 

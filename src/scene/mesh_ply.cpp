@@ -9,6 +9,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "erpt/file_util.h"
 #include "erpt/mesh_io.h"
 
 namespace erpt {
@@ -38,14 +39,6 @@ struct PlyHeader {
   size_t bodyOffset = 0;  // first byte after the end_header line
   int lineCount = 0;      // ascii body line numbers continue from here
 };
-
-std::string readWholeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0}, "cannot open mesh file");
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError({path, 0}, "cannot open mesh file");
-  return data;
-}
 
 std::vector<std::string> splitWords(const std::string& line) {
   std::istringstream in(line);
@@ -483,7 +476,7 @@ MeshData readBody(Source& src, const PlyHeader& header, const std::string& path,
 }  // namespace
 
 MeshData readPly(const std::string& path, Warnings& warnings) {
-  std::string data = readWholeFile(path);
+  std::string data = readWholeFile(path, "mesh file");
   PlyHeader header = HeaderParser(data, path, warnings).parse();
   if (header.format == PlyFormat::Ascii) {
     AsciiSource src(data, header, path);

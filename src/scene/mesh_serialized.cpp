@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 
+#include "erpt/file_util.h"
 #include "erpt/mesh_io.h"
 
 namespace erpt {
@@ -26,14 +27,6 @@ enum ShapeFlags : uint32_t {
   kSinglePrecision = 0x1000,
   kDoublePrecision = 0x2000,
 };
-
-std::string readWholeFile(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0}, "cannot open mesh file");
-  std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw InputError({path, 0}, "cannot open mesh file");
-  return data;
-}
 
 // Decodes an unsigned little-endian integer of `bytes` bytes, whatever the host's byte order.
 uint64_t loadLE(const unsigned char* p, size_t bytes) {
@@ -122,7 +115,7 @@ class Inflater {
 
 class SerializedFile {
  public:
-  explicit SerializedFile(const std::string& path) : path_(path), data_(readWholeFile(path)) {}
+  explicit SerializedFile(const std::string& path) : path_(path), data_(readWholeFile(path, "mesh file")) {}
 
   MeshData readShape(int shapeIndex) {
     int version = shapeHeader(0);

@@ -1,5 +1,7 @@
 #include "xml_document.h"
 
+#include "erpt/file_util.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
@@ -11,11 +13,7 @@
 namespace erpt::xml {
 
 Document::Document(const std::string& path) : path_(path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError({path, 0}, "cannot open scene file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  text_ = buffer.str();
+  text_ = readWholeFile(path, "scene file");
   lineStarts_.push_back(0);
   for (size_t i = 0; i < text_.size(); ++i)
     if (text_[i] == '\n') lineStarts_.push_back(i + 1);

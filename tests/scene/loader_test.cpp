@@ -1,6 +1,7 @@
 // Scene loading: both Mitsuba dialects, the shared Cornell box, transforms, defaults and -D.
 #include <gtest/gtest.h>
 
+#include "erpt/image_io.h"
 #include "erpt/scene_loader.h"
 #include "support/test_support.h"
 
@@ -249,6 +250,38 @@ TEST(Loader, CheckerboardTextureWithUvScale) {
   EXPECT_FLOAT_EQ(s.surfaceColors(m, 0.1f, 0.1f).reflectance.x, 1.0f);
   EXPECT_FLOAT_EQ(s.surfaceColors(m, 0.3f, 0.1f).reflectance.z, 1.0f);
   EXPECT_FLOAT_EQ(s.surfaceColors(m, 0.3f, 0.3f).reflectance.x, 1.0f);
+}
+
+}  // namespace
+}  // namespace erpt
+
+namespace erpt {
+namespace {
+
+float srgbDecode(float v) { return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f); }
+
+TEST(Loader, BitmapTextureIsSrgbDecodedAndBilinear) {
+  test::TempDir dir;
+  // 2x1 PNG of linear 1 and 0.5: writePngAtomic stores them sRGB-encoded in 8 bits, the
+  // loader must decode them back to linear.
+  RgbImage img;
+  img.width = 2;
+  img.height = 1;
+  img.pixels = {Color(1.0f), Color(0.5f)};
+  writePngAtomic(dir.file("tex.png"), img);
+  Scene s = loadScene(dir.write("s.xml", R"(<scene version="3.0.0">
+      <shape type="rectangle"><bsdf type="diffuse">
+        <texture type="bitmap" name="reflectance"><string name="filename" value="tex.png"/></texture>
+      </bsdf></shape></scene>)"));
+  ASSERT_EQ(s.textures.size(), 1u);
+  int m = s.mesh.material[0];
+  const float encoded = 1.055f * std::pow(0.5f, 1.0f / 2.4f) - 0.055f;
+  const float dark = srgbDecode(std::round(encoded * 255.0f) / 255.0f);
+  EXPECT_NEAR(dark, 0.5f, 0.005f);
+  // Texel centres at u = 0.25 and 0.75; halfway between them the values blend evenly.
+  EXPECT_NEAR(s.surfaceColors(m, 0.25f, 0.5f).reflectance.x, 1.0f, 1e-4f);
+  EXPECT_NEAR(s.surfaceColors(m, 0.75f, 0.5f).reflectance.x, dark, 1e-4f);
+  EXPECT_NEAR(s.surfaceColors(m, 0.5f, 0.5f).reflectance.x, 0.5f * (1.0f + dark), 1e-4f);
 }
 
 }  // namespace

@@ -1,0 +1,732 @@
+// BSDF tests: sampled directions follow bsdfPdf (chi-square), sample/eval/pdf agree,
+// reciprocity, energy conservation, one-sidedness, the Dirac lobes and the Fresnel and
+// microfacet building blocks (checked against independent double-precision formulas).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "erpt/bsdf.h"
+#include "erpt/warp.h"
+#include "support/chi_square.h"
+
+namespace erpt {
+namespace {
+
+using test::testUniform;
+
+constexpr float kDegree = kPi / 180.0f;
+constexpr double kPiDouble = 3.14159265358979323846;  // for integrals accumulated in double
+constexpr uint64_t kChiSquareSamples = 300000;
+constexpr double kSignificance = 0.01;
+
+// ---------------------------------------------------------------------------------------
+// Materials and helpers
+
+// Unit direction at polar angle theta (from the normal, +z) and azimuth phi, in degrees.
+Vec3 direction(float thetaDeg, float phiDeg = 30.0f) {
+  float t = thetaDeg * kDegree, p = phiDeg * kDegree;
+  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+
+SurfaceColors colorsOf(const Material& m) {
+  return {m.reflectance.value, m.specularReflectance.value, m.specularTransmittance.value};
+}
+
+const char* distributionName(MicrofacetKind d) { return d == MicrofacetKind::GGX ? "GGX" : "Beckmann"; }
+
+// "0.3" -> "0p3", for test names (which allow only [A-Za-z0-9_]).
+std::string numberTag(float v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  std::string s = buf;
+  std::replace(s.begin(), s.end(), '.', 'p');
+  std::replace(s.begin(), s.end(), '-', 'm');
+  return s;
+}
+
+Material finalized(Material m) {
+  finalizeMaterial(m);
+  return m;
+}
+
+Material diffuse(Color reflectance = Color(0.5f), bool twoSided = false) {
+  Material m;
+  m.kind = BsdfKind::Diffuse;
+  m.reflectance.value = reflectance;
+  m.twoSided = twoSided;
+  return finalized(m);
+}
+
+// Gold-like complex IOR, so the Fresnel term varies with angle and per channel.
+const Color kGoldEta(0.2f, 0.92f, 1.1f), kGoldK(3.9f, 2.45f, 2.14f);
+
+Material conductor(Color eta, Color k, Color specular = Color(1.0f)) {
+  Material m;
+  m.kind = BsdfKind::Conductor;
+  m.eta = eta;
+  m.k = k;
+  m.specularReflectance.value = specular;
+  return finalized(m);
+}
+
+Material roughConductor(MicrofacetKind dist, float alpha, Color eta = kGoldEta, Color k = kGoldK,
+                        bool twoSided = false) {
+  Material m = conductor(eta, k);
+  m.kind = BsdfKind::RoughConductor;
+  m.distribution = dist;
+  m.alpha = alpha;
+  m.twoSided = twoSided;
+  return finalized(m);
+}
+
+Material dielectric(float intIOR = 1.5f, float extIOR = 1.0f, BsdfKind kind = BsdfKind::Dielectric) {
+  Material m;
+  m.kind = kind;
+  m.intIOR = intIOR;
+  m.extIOR = extIOR;
+  m.specularReflectance.value = Color(1.0f);
+  m.specularTransmittance.value = Color(1.0f);
+  return finalized(m);
+}
+
+Material plastic(Color reflectance = Color(0.5f), bool nonlinear = false, bool twoSided = false) {
+  Material m;
+  m.kind = BsdfKind::Plastic;
+  m.reflectance.value = reflectance;
+  m.specularReflectance.value = Color(1.0f);
+  m.nonlinear = nonlinear;
+  m.twoSided = twoSided;
+  return finalized(m);  // computes fdrInternal and the coat's sampling weight
+}
+
+Material roughPlastic(MicrofacetKind dist, float alpha, Color reflectance = Color(0.5f), bool nonlinear = false,
+                      bool twoSided = false) {
+  Material m = plastic(reflectance, nonlinear, twoSided);
+  m.kind = BsdfKind::RoughPlastic;
+  m.distribution = dist;
+  m.alpha = alpha;
+  return finalized(m);
+}
+
+bool closeRelative(double a, double b, double relTol, double absTol = 1e-7) {
+  return std::abs(a - b) <= relTol * std::max(std::abs(a), std::abs(b)) + absTol;
+}
+
+// Independent references in double precision (textbook Fresnel equations).
+double referenceFresnelDielectric(double cosI, double nI, double nT) {
+  double sinT2 = (nI / nT) * (nI / nT) * (1 - cosI * cosI);
+  if (sinT2 >= 1) return 1.0;
+  double cosT = std::sqrt(1 - sinT2);
+  double rs = (nI * cosI - nT * cosT) / (nI * cosI + nT * cosT);
+  double rp = (nT * cosI - nI * cosT) / (nT * cosI + nI * cosT);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+double referenceFresnelConductor(double cosI, double eta, double k) {
+  using C = std::complex<double>;
+  C n(eta, k);
+  C cosT = std::sqrt(C(1.0) - (1 - cosI * cosI) / (n * n));
+  C rs = (cosI - n * cosT) / (cosI + n * cosT);
+  C rp = (n * cosI - cosT) / (n * cosI + cosT);
+  return 0.5 * (std::norm(rs) + std::norm(rp));
+}
+
+// ---------------------------------------------------------------------------------------
+// Sampling matches the pdf (chi-square), and sample() agrees with eval() and pdf()
+
+struct SamplingCase {
+  std::string name;
+  Material material;
+  Vec3 wi;
+  int thetaBins = 48;  // phi gets twice as many: square-ish cells near the equator
+};
+
+void PrintTo(const SamplingCase& c, std::ostream* os) { *os << c.name; }
+
+std::vector<SamplingCase> samplingCases() {
+  std::vector<SamplingCase> cases;
+  for (float theta : {30.0f, 80.0f})
+    cases.push_back({"Diffuse_wi" + numberTag(theta), diffuse(), direction(theta)});
+
+  for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
+    for (float alpha : {0.1f, 0.3f, 0.7f}) {
+      // A narrow lobe needs finer bins for the histogram to resolve its shape. At normal
+      // incidence a narrow lobe would sit in the polar row only, so it starts at 0 for
+      // the wider lobes.
+      int bins = alpha < 0.2f ? 96 : 48;
+      std::vector<float> thetas = {30.0f, 60.0f, 80.0f};
+      if (alpha > 0.2f) thetas.insert(thetas.begin(), 0.0f);
+      for (float theta : thetas)
+        cases.push_back({std::string("RoughConductor_") + distributionName(dist) + "_a" + numberTag(alpha) +
+                             "_wi" + numberTag(theta),
+                         roughConductor(dist, alpha), direction(theta), bins});
+    }
+  }
+
+  // Plastic: only the diffuse part has a pdf; the coat's Dirac samples are missing mass,
+  // whose frequency must equal 1 - (integral of the pdf).
+  for (float theta : {20.0f, 70.0f, 85.0f})
+    cases.push_back({"Plastic_wi" + numberTag(theta), plastic(), direction(theta)});
+
+  for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX})
+    for (float alpha : {0.15f, 0.5f})
+      for (float theta : {30.0f, 80.0f})
+        cases.push_back({std::string("RoughPlastic_") + distributionName(dist) + "_a" + numberTag(alpha) + "_wi" +
+                             numberTag(theta),
+                         roughPlastic(dist, alpha), direction(theta), alpha < 0.2f ? 96 : 48});
+
+  // Two-sided materials hit from the back: everything must happen in the lower hemisphere.
+  for (float theta : {120.0f, 170.0f})
+    cases.push_back({"TwoSidedDiffuseBack_wi" + numberTag(theta), diffuse(Color(0.5f), true), direction(theta)});
+  cases.push_back({"TwoSidedRoughConductorBack_GGX_a0p3_wi130",
+                   roughConductor(MicrofacetKind::GGX, 0.3f, kGoldEta, kGoldK, true), direction(130.0f)});
+  cases.push_back({"TwoSidedRoughPlasticBack_Beckmann_a0p3_wi150",
+                   roughPlastic(MicrofacetKind::Beckmann, 0.3f, Color(0.5f), false, true), direction(150.0f)});
+  return cases;
+}
+
+class BsdfSamplingTest : public ::testing::TestWithParam<SamplingCase> {};
+
+TEST_P(BsdfSamplingTest, SampledDirectionsFollowPdf) {
+  const SamplingCase& tc = GetParam();
+  const SurfaceColors colors = colorsOf(tc.material);
+  auto sampler = [&](uint64_t i, Vec3& dir) {
+    BsdfSample s;
+    if (!bsdfSample(tc.material, colors, tc.wi, testUniform(i, 0), testUniform(i, 1), testUniform(i, 2), s))
+      return false;
+    if (s.delta) return false;  // Dirac lobes have no density: they are the missing mass
+    dir = s.wo;
+    return true;
+  };
+  auto pdf = [&](Vec3 wo) { return bsdfPdf(tc.material, colors, tc.wi, wo); };
+  test::ChiSquareResult r = test::chiSquareTest(sampler, pdf, tc.thetaBins, 2 * tc.thetaBins, kChiSquareSamples);
+  RecordProperty("pValue", std::to_string(r.pValue));
+  EXPECT_GT(r.pValue, kSignificance) << tc.name << ": " << r.summary();
+  EXPECT_LE(r.pdfIntegral, 1.0 + 1e-3) << "the pdf integrates to more than 1: " << r.summary();
+}
+
+TEST_P(BsdfSamplingTest, SampleAgreesWithEvalAndPdf) {
+  const SamplingCase& tc = GetParam();
+  const SurfaceColors colors = colorsOf(tc.material);
+  int checked = 0, pdfMismatches = 0, weightMismatches = 0;
+  std::string firstMismatch;
+  for (uint64_t i = 0; i < 20000; ++i) {
+    BsdfSample s;
+    if (!bsdfSample(tc.material, colors, tc.wi, testUniform(i, 0, 7), testUniform(i, 1, 7), testUniform(i, 2, 7),
+                    s) ||
+        s.delta)
+      continue;
+    ++checked;
+    float pdf = bsdfPdf(tc.material, colors, tc.wi, s.wo);
+    Color f = bsdfEval(tc.material, colors, tc.wi, s.wo);
+    bool pdfOk = closeRelative(s.pdf, pdf, 1e-3);
+    bool weightOk = pdf > 0;
+    for (int ch = 0; ch < 3 && weightOk; ++ch) weightOk = closeRelative(s.weight[ch], f[ch] / pdf, 1e-3);
+    pdfMismatches += !pdfOk;
+    weightMismatches += !weightOk;
+    if ((!pdfOk || !weightOk) && firstMismatch.empty()) {
+      char buf[256];
+      std::snprintf(buf, sizeof buf, "wo (%g, %g, %g): sample pdf %g vs bsdfPdf %g; weight.x %g vs eval/pdf %g",
+                    s.wo.x, s.wo.y, s.wo.z, s.pdf, pdf, s.weight.x, f.x / pdf);
+      firstMismatch = buf;
+    }
+  }
+  EXPECT_GT(checked, 1000) << "too few non-Dirac samples to check";
+  EXPECT_EQ(pdfMismatches, 0) << firstMismatch;
+  EXPECT_EQ(weightMismatches, 0) << firstMismatch;
+}
+
+INSTANTIATE_TEST_SUITE_P(Bsdfs, BsdfSamplingTest, ::testing::ValuesIn(samplingCases()),
+                         [](const ::testing::TestParamInfo<SamplingCase>& info) { return info.param.name; });
+
+// ---------------------------------------------------------------------------------------
+// Reciprocity: f(wi, wo) = f(wo, wi), i.e. eval(wi, wo) / |wo.z| = eval(wo, wi) / |wi.z|
+
+struct NamedMaterial {
+  std::string name;
+  Material material;
+  bool fromBack = false;  // test the back side (two-sided materials)
+};
+
+std::vector<NamedMaterial> nonDeltaMaterials() {
+  std::vector<NamedMaterial> ms = {{"diffuse", diffuse()},
+                                   {"plastic", plastic()},
+                                   {"plastic nonlinear", plastic(Color(0.8f, 0.5f, 0.2f), true)},
+                                   {"twosided diffuse (back)", diffuse(Color(0.5f), true), true},
+                                   {"twosided roughplastic (back)",
+                                    roughPlastic(MicrofacetKind::GGX, 0.3f, Color(0.5f), false, true), true}};
+  for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
+    for (float alpha : {0.1f, 0.3f, 0.7f}) {
+      std::string tag = std::string(distributionName(dist)) + " alpha " + numberTag(alpha);
+      ms.push_back({"roughconductor " + tag, roughConductor(dist, alpha)});
+      ms.push_back({"roughplastic " + tag, roughPlastic(dist, alpha)});
+    }
+  }
+  return ms;
+}
+
+TEST(BsdfReciprocity, EvalIsSymmetricUnderSwap) {
+  for (const NamedMaterial& nm : nonDeltaMaterials()) {
+    const SurfaceColors colors = colorsOf(nm.material);
+    int failures = 0, nonzero = 0;
+    std::string first;
+    for (uint64_t i = 0; i < 4000; ++i) {
+      Vec3 wi = squareToUniformSphere(testUniform(i, 0, 11), testUniform(i, 1, 11));
+      Vec3 wo = squareToUniformSphere(testUniform(i, 2, 11), testUniform(i, 3, 11));
+      // Both on the tested side: reflection only (transmission is Dirac-only here).
+      float side = nm.fromBack ? -1.0f : 1.0f;
+      wi.z = side * std::abs(wi.z);
+      wo.z = side * std::abs(wo.z);
+      if (std::abs(wi.z) < 1e-2f || std::abs(wo.z) < 1e-2f) continue;
+      Color a = bsdfEval(nm.material, colors, wi, wo) / std::abs(wo.z);
+      Color b = bsdfEval(nm.material, colors, wo, wi) / std::abs(wi.z);
+      nonzero += !isBlack(a);
+      for (int ch = 0; ch < 3; ++ch) {
+        if (!closeRelative(a[ch], b[ch], 1e-3, 1e-6)) {
+          if (failures++ == 0)
+            first = "f(wi,wo) = " + std::to_string(a[ch]) + " but f(wo,wi) = " + std::to_string(b[ch]);
+          break;
+        }
+      }
+    }
+    EXPECT_EQ(failures, 0) << nm.name << ": " << first;
+    EXPECT_GT(nonzero, 1000) << nm.name << ": eval is almost always zero, the test checks nothing";
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// Energy conservation: the Monte Carlo albedo (mean sample weight, Dirac lobes included)
+// of a white material must not exceed 1.
+
+struct Albedo {
+  double mean = 0, sigma = 0;  // sigma: standard error of the mean
+};
+
+Albedo albedo(const Material& m, Vec3 wi, uint64_t n, uint64_t seed = 13) {
+  const SurfaceColors colors = colorsOf(m);
+  double sum = 0, sum2 = 0;
+  Albedo a;
+  for (uint64_t i = 0; i < n; ++i) {
+    BsdfSample s;
+    double w = 0;  // a failed sample carries no energy
+    if (bsdfSample(m, colors, wi, testUniform(i, 0, seed), testUniform(i, 1, seed), testUniform(i, 2, seed), s))
+      w = luminance(s.weight);
+    sum += w;
+    sum2 += w * w;
+  }
+  a.mean = sum / double(n);
+  a.sigma = std::sqrt(std::max(0.0, sum2 / double(n) - a.mean * a.mean) / double(n));
+  return a;
+}
+
+// Materials with reflectance 1 may be exactly energy-conserving (diffuse, thindielectric,
+// plastic), so the bound is tight: 3 standard errors plus a small allowance for the numerical
+// integration behind plastic's Fdr.
+void expectAlbedoAtMostOne(const std::vector<NamedMaterial>& ms) {
+  for (const NamedMaterial& nm : ms) {
+    for (float theta : {0.0f, 30.0f, 60.0f, 80.0f, 89.0f}) {
+      Albedo a = albedo(nm.material, direction(theta), 200000);
+      EXPECT_LE(a.mean, 1.0 + 3 * a.sigma + 2e-4)
+          << nm.name << " at theta_i = " << theta << " deg: albedo " << a.mean << " +- " << a.sigma;
+    }
+  }
+}
+
+TEST(BsdfEnergy, WhiteMaterialsReflectAtMostAllEnergy) {
+  const Color white(1.0f);
+  std::vector<NamedMaterial> ms = {
+      {"diffuse", diffuse(white)},
+      {"conductor (perfect mirror)", conductor(Color(0.0f), Color(1.0f))},
+      // Seen from outside. From inside the glass the weight of transmission is eta^2 > 1:
+      // radiance grows on entering a denser medium, which is not a gain of energy.
+      {"dielectric", dielectric()},
+      {"thindielectric", dielectric(1.5f, 1.0f, BsdfKind::ThinDielectric)},
+      {"plastic", plastic(white)},
+      {"plastic nonlinear", plastic(white, true)},
+  };
+  for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX})
+    for (float alpha : {0.1f, 0.3f, 0.7f})
+      ms.push_back({std::string("roughconductor ") + distributionName(dist) + " alpha " + numberTag(alpha),
+                    roughConductor(dist, alpha, Color(0.0f), Color(1.0f))});
+  expectAlbedoAtMostOne(ms);
+}
+
+// Separate from the above because it checks a modelling choice: the diffuse base must only
+// receive what the rough coat does not reflect. Weighting it by (1 - smooth Fresnel) while
+// the rough lobe reflects more than the smooth Fresnel (at moderate roughness and angles)
+// creates energy.
+TEST(BsdfEnergy, WhiteRoughPlasticReflectsAtMostAllEnergy) {
+  std::vector<NamedMaterial> ms;
+  for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX})
+    for (float alpha : {0.1f, 0.3f, 0.7f})
+      ms.push_back({std::string("roughplastic ") + distributionName(dist) + " alpha " + numberTag(alpha),
+                    roughPlastic(dist, alpha, Color(1.0f))});
+  expectAlbedoAtMostOne(ms);
+}
+
+TEST(BsdfEnergy, WhiteDiffuseReflectsExactlyEverything) {
+  const Material m = diffuse(Color(1.0f));
+  const SurfaceColors colors = colorsOf(m);
+  for (float theta : {0.0f, 45.0f, 85.0f}) {
+    int failures = 0, wrongWeight = 0;
+    for (uint64_t i = 0; i < 20000; ++i) {
+      BsdfSample s;
+      if (!bsdfSample(m, colors, direction(theta), testUniform(i, 0), testUniform(i, 1), testUniform(i, 2), s)) {
+        ++failures;
+        continue;
+      }
+      for (int ch = 0; ch < 3; ++ch) wrongWeight += std::abs(s.weight[ch] - 1.0f) > 1e-5f;
+    }
+    EXPECT_EQ(failures, 0) << "theta_i = " << theta;
+    EXPECT_EQ(wrongWeight, 0) << "theta_i = " << theta;
+    EXPECT_NEAR(albedo(m, direction(theta), 20000).mean, 1.0, 1e-5);
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// One-sided materials are black from behind
+
+TEST(BsdfSides, OneSidedReflectorsAreBlackFromBehind) {
+  const std::vector<NamedMaterial> ms = {{"diffuse", diffuse()},
+                                         {"conductor", conductor(kGoldEta, kGoldK)},
+                                         {"roughconductor", roughConductor(MicrofacetKind::GGX, 0.3f)},
+                                         {"plastic", plastic()},
+                                         {"roughplastic", roughPlastic(MicrofacetKind::Beckmann, 0.3f)}};
+  const Vec3 wi = direction(135.0f);  // arriving from below the surface
+  for (const NamedMaterial& nm : ms) {
+    const SurfaceColors colors = colorsOf(nm.material);
+    for (Vec3 wo : {direction(20.0f, 200.0f), direction(150.0f, 80.0f), direction(45.0f, 210.0f),
+                    Vec3(-wi.x, -wi.y, wi.z)}) {
+      EXPECT_TRUE(isBlack(bsdfEval(nm.material, colors, wi, wo))) << nm.name;
+      EXPECT_EQ(bsdfPdf(nm.material, colors, wi, wo), 0.0f) << nm.name;
+    }
+    for (uint64_t i = 0; i < 100; ++i) {
+      BsdfSample s;
+      EXPECT_FALSE(bsdfSample(nm.material, colors, wi, testUniform(i, 0), testUniform(i, 1), testUniform(i, 2), s))
+          << nm.name << " sampled a direction from behind";
+    }
+  }
+  // The same diffuse, two-sided, is lit from behind like from the front.
+  const Material two = diffuse(Color(0.5f), true);
+  Color back = bsdfEval(two, colorsOf(two), wi, direction(150.0f, 80.0f));
+  Color front = bsdfEval(two, colorsOf(two), Vec3(wi.x, wi.y, -wi.z), direction(30.0f, 80.0f));
+  EXPECT_FALSE(isBlack(back));
+  EXPECT_NEAR(back.x, front.x, 1e-6f);
+}
+
+// ---------------------------------------------------------------------------------------
+// Dirac lobes
+
+TEST(BsdfDelta, PerfectMirrorReflectsWithWeightOne) {
+  const Material m = conductor(Color(0.0f), Color(1.0f));
+  const SurfaceColors colors = colorsOf(m);
+  for (float theta : {0.0f, 40.0f, 85.0f}) {
+    Vec3 wi = direction(theta, 70.0f);
+    BsdfSample s;
+    ASSERT_TRUE(bsdfSample(m, colors, wi, 0.3f, 0.6f, 0.9f, s));
+    EXPECT_TRUE(s.delta);
+    EXPECT_NEAR(s.wo.x, -wi.x, 1e-6f);
+    EXPECT_NEAR(s.wo.y, -wi.y, 1e-6f);
+    EXPECT_NEAR(s.wo.z, wi.z, 1e-6f);
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(s.weight[ch], 1.0f, 1e-5f) << "theta " << theta;
+    // Dirac lobes are invisible to eval() and pdf().
+    EXPECT_TRUE(isBlack(bsdfEval(m, colors, wi, s.wo)));
+    EXPECT_EQ(bsdfPdf(m, colors, wi, s.wo), 0.0f);
+  }
+}
+
+TEST(BsdfDelta, ConductorWeightIsItsFresnelReflectance) {
+  const Material m = conductor(kGoldEta, kGoldK);
+  const SurfaceColors colors = colorsOf(m);
+  for (float theta : {0.0f, 30.0f, 60.0f, 80.0f, 89.0f}) {
+    Vec3 wi = direction(theta);
+    BsdfSample s;
+    ASSERT_TRUE(bsdfSample(m, colors, wi, 0.5f, 0.5f, 0.5f, s));
+    EXPECT_TRUE(s.delta);
+    EXPECT_NEAR(s.wo.z, wi.z, 1e-6f);
+    Color f = fresnelConductor(wi.z, kGoldEta, kGoldK);
+    for (int ch = 0; ch < 3; ++ch) {
+      EXPECT_FLOAT_EQ(s.weight[ch], f[ch]) << "theta " << theta << " channel " << ch;
+      // ... and fresnelConductor itself matches the complex Fresnel equations.
+      EXPECT_NEAR(f[ch], referenceFresnelConductor(wi.z, kGoldEta[ch], kGoldK[ch]), 2e-4)
+          << "theta " << theta << " channel " << ch;
+    }
+  }
+  // Normal incidence has the closed form ((n-1)^2 + k^2) / ((n+1)^2 + k^2).
+  Color f0 = fresnelConductor(1.0f, kGoldEta, kGoldK);
+  for (int ch = 0; ch < 3; ++ch) {
+    double n = kGoldEta[ch], k = kGoldK[ch];
+    EXPECT_NEAR(f0[ch], ((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k), 1e-5);
+  }
+}
+
+TEST(BsdfDelta, DielectricChoosesReflectionWithFresnelProbability) {
+  const Material m = dielectric(1.5f, 1.0f);
+  const SurfaceColors colors = colorsOf(m);
+  const int n = 100000;
+  // From outside, and from inside below the critical angle (41.8 degrees).
+  for (float theta : {0.0f, 30.0f, 60.0f, 85.0f, 100.0f, 140.0f, 160.0f}) {
+    Vec3 wi = direction(theta);
+    int reflected = 0;
+    for (int i = 0; i < n; ++i) {
+      BsdfSample s;
+      ASSERT_TRUE(bsdfSample(m, colors, wi, (i + 0.5f) / n, 0.5f, 0.5f, s));
+      ASSERT_TRUE(s.delta);
+      reflected += s.wo.z * wi.z > 0;
+    }
+    double fresnel = fresnelDielectric(wi.z, 1.5f);
+    EXPECT_NEAR(double(reflected) / n, fresnel, 2.0 / n) << "theta " << theta;
+    double reference = wi.z > 0 ? referenceFresnelDielectric(wi.z, 1.0, 1.5)
+                                : referenceFresnelDielectric(-wi.z, 1.5, 1.0);
+    EXPECT_NEAR(fresnel, reference, 1e-5) << "theta " << theta;
+  }
+}
+
+TEST(BsdfDelta, DielectricRefractionObeysSnellAndScalesRadiance) {
+  const float eta = 1.5f;
+  const Material m = dielectric(eta, 1.0f);
+  const SurfaceColors colors = colorsOf(m);
+  const float u1 = 0.9999f;  // beyond every Fresnel reflectance below: always refract
+  for (float theta : {0.0f, 25.0f, 50.0f, 75.0f, 89.0f, 180.0f, 160.0f, 145.0f}) {
+    Vec3 wi = direction(theta, 110.0f);
+    bool entering = wi.z > 0;
+    BsdfSample s;
+    ASSERT_TRUE(bsdfSample(m, colors, wi, u1, 0.5f, 0.5f, s));
+    ASSERT_TRUE(s.delta);
+    ASSERT_LT(s.wo.z * wi.z, 0) << "theta " << theta << ": expected refraction";
+    EXPECT_NEAR(length(s.wo), 1.0f, 1e-5f);
+    float sinI = std::sqrt(wi.x * wi.x + wi.y * wi.y), sinT = std::sqrt(s.wo.x * s.wo.x + s.wo.y * s.wo.y);
+    float relEta = entering ? eta : 1 / eta;  // n_t / n_i
+    EXPECT_NEAR(sinT, sinI / relEta, 1e-5f) << "theta " << theta;
+    // The refracted ray stays in the plane of incidence, on the other side of the normal.
+    EXPECT_LE(wi.x * s.wo.x + wi.y * s.wo.y, 1e-6f);
+    EXPECT_NEAR(wi.x * s.wo.y - wi.y * s.wo.x, 0.0f, 1e-6f);
+    float expectedWeight = entering ? 1 / (eta * eta) : eta * eta;
+    for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(s.weight[ch], expectedWeight, 1e-5f) << "theta " << theta;
+    EXPECT_NEAR(s.eta, relEta, 1e-6f);
+    double f = fresnelDielectric(wi.z, eta);
+    EXPECT_NEAR(s.pdf, 1 - f, 1e-6);
+  }
+}
+
+TEST(BsdfDelta, TotalInternalReflectionBeyondCriticalAngle) {
+  const float eta = 1.5f;
+  const Material m = dielectric(eta, 1.0f);
+  const SurfaceColors colors = colorsOf(m);
+  const float critical = std::asin(1 / eta) / kDegree;  // 41.8 degrees
+  for (float offset : {0.5f, 10.0f, 40.0f}) {
+    Vec3 wi = direction(180.0f - (critical + offset));  // inside the glass
+    EXPECT_EQ(fresnelDielectric(wi.z, eta), 1.0f);
+    for (float u1 : {0.0f, 0.5f, 0.999999f}) {
+      BsdfSample s;
+      ASSERT_TRUE(bsdfSample(m, colors, wi, u1, 0.5f, 0.5f, s));
+      EXPECT_TRUE(s.delta);
+      EXPECT_NEAR(s.wo.x, -wi.x, 1e-6f);
+      EXPECT_NEAR(s.wo.y, -wi.y, 1e-6f);
+      EXPECT_NEAR(s.wo.z, wi.z, 1e-6f);
+      EXPECT_NEAR(s.weight.x, 1.0f, 1e-6f);
+    }
+  }
+  // Just below the critical angle light still escapes.
+  EXPECT_LT(fresnelDielectric(direction(180.0f - (critical - 0.5f)).z, eta), 1.0f);
+}
+
+TEST(BsdfDelta, FresnelAtNormalIncidence) {
+  for (float eta : {1.33f, 1.5f, 2.4f}) {
+    float expected = (eta - 1) * (eta - 1) / ((eta + 1) * (eta + 1));
+    EXPECT_NEAR(fresnelDielectric(1.0f, eta), expected, 1e-6f) << "eta " << eta;
+    EXPECT_NEAR(fresnelDielectric(-1.0f, eta), expected, 1e-6f) << "from inside, eta " << eta;
+  }
+  EXPECT_NEAR(fresnelDielectric(1.0f, 1.5f), 0.04f, 1e-6f);
+}
+
+TEST(BsdfDelta, ThinDielectricTransmitsStraightThrough) {
+  const Material m = dielectric(1.5f, 1.0f, BsdfKind::ThinDielectric);
+  const SurfaceColors colors = colorsOf(m);
+  for (float theta : {0.0f, 40.0f, 80.0f, 130.0f}) {
+    Vec3 wi = direction(theta, 250.0f);
+    int reflected = 0;
+    const int n = 20000;
+    for (int i = 0; i < n; ++i) {
+      BsdfSample s;
+      ASSERT_TRUE(bsdfSample(m, colors, wi, (i + 0.5f) / n, 0.5f, 0.5f, s));
+      ASSERT_TRUE(s.delta);
+      if (s.wo.z * wi.z > 0) {
+        ++reflected;
+        continue;
+      }
+      EXPECT_EQ(s.wo.x, -wi.x);
+      EXPECT_EQ(s.wo.y, -wi.y);
+      EXPECT_EQ(s.wo.z, -wi.z);
+      EXPECT_NEAR(s.weight.x, 1.0f, 1e-6f);
+      if (::testing::Test::HasFailure()) return;
+    }
+    // A slab reflects R + T^2 R / (1 - R^2) = 2R / (1 + R) after all inter-reflections.
+    double r = referenceFresnelDielectric(std::abs(wi.z), 1.0, 1.5);
+    EXPECT_NEAR(double(reflected) / n, 2 * r / (1 + r), 2.0 / n) << "theta " << theta;
+  }
+}
+
+TEST(BsdfDelta, PlasticCoatIsAMirrorWithFresnelWeight) {
+  const Material m = plastic();
+  const SurfaceColors colors = colorsOf(m);
+  Vec3 wi = direction(50.0f);
+  BsdfSample s;
+  ASSERT_TRUE(bsdfSample(m, colors, wi, 0.0f, 0.5f, 0.5f, s));  // u1 = 0 always picks the coat
+  ASSERT_TRUE(s.delta);
+  EXPECT_NEAR(s.wo.z, wi.z, 1e-6f);
+  // weight * (probability of picking the coat) = the coat's reflectance.
+  EXPECT_NEAR(s.weight.x * s.pdf, fresnelDielectric(wi.z, m.relativeIOR()), 1e-6f);
+}
+
+// ---------------------------------------------------------------------------------------
+// Fresnel and microfacet building blocks
+
+TEST(Fresnel, DiffuseFresnelReflectanceIsPlausible) {
+  // Light inside a medium of index 1.5 hitting its boundary: about 0.596 is reflected.
+  float internal = diffuseFresnelReflectance(1 / 1.5f);
+  EXPECT_GT(internal, 0.590f);
+  EXPECT_LT(internal, 0.602f);
+  // From outside about 0.092 (the well-known 4% at normal incidence, more at grazing).
+  float external = diffuseFresnelReflectance(1.5f);
+  EXPECT_GT(external, 0.088f);
+  EXPECT_LT(external, 0.096f);
+  // Reciprocity of diffuse transmission: 1 - Fdr_int = (1 - Fdr_ext) / eta^2.
+  EXPECT_NEAR(1 - internal, (1 - external) / (1.5f * 1.5f), 2e-3f);
+}
+
+TEST(Fresnel, ConductorWithoutAbsorptionIsADielectric) {
+  for (int i = 1; i <= 100; ++i) {
+    float c = i / 100.0f;
+    Color fc = fresnelConductor(c, Color(1.5f), Color(0.0f));
+    float fd = fresnelDielectric(c, 1.5f);
+    EXPECT_NEAR(fc.x, fd, 1e-4f) << "cos " << c;
+    EXPECT_NEAR(fc.y, fd, 1e-4f) << "cos " << c;
+  }
+}
+
+TEST(Fresnel, DielectricMatchesReferenceAtAllAngles) {
+  for (float eta : {1.33f, 1.5f}) {
+    for (int i = -100; i <= 100; ++i) {
+      if (i == 0) continue;
+      float c = i / 100.0f;
+      double reference = c > 0 ? referenceFresnelDielectric(c, 1.0, eta) : referenceFresnelDielectric(-c, eta, 1.0);
+      EXPECT_NEAR(fresnelDielectric(c, eta), reference, 2e-5) << "cos " << c << " eta " << eta;
+    }
+  }
+}
+
+TEST(Microfacet, DistributionsAreNormalizedInProjectedArea) {
+  // The integral of D(m) cos(theta_m) over the hemisphere is 1 (the microsurface projects
+  // onto the macrosurface). Integrated over theta, where narrow lobes are well resolved.
+  const int n = 200000;
+  for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
+    for (float alpha : {0.05f, 0.1f, 0.3f, 0.7f, 1.0f}) {
+      double sum = 0, dTheta = 0.5 * kPiDouble / n;
+      for (int i = 0; i < n; ++i) {
+        double t = (i + 0.5) * dTheta;
+        Vec3 m(float(std::sin(t)), 0.0f, float(std::cos(t)));
+        sum += microfacetD(dist, alpha, m) * std::cos(t) * std::sin(t) * dTheta;
+      }
+      EXPECT_NEAR(2 * kPiDouble * sum, 1.0, 2e-3) << distributionName(dist) << " alpha " << alpha;
+    }
+  }
+}
+
+TEST(Microfacet, SmithShadowingConservesVisibleProjectedArea) {
+  // The microfacets visible from v project onto v's view plane with the same area as the
+  // macrosurface: integral of G1(v, m) max(0, v.m) D(m) dm = cos(theta_v). Exact for GGX's
+  // Smith G1; Beckmann's rational approximation stays within about 0.3%.
+  const int nTheta = 1500, nPhi = 256;
+  for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
+    for (float alpha : {0.2f, 0.5f, 1.0f}) {
+      for (float thetaV : {0.0f, 40.0f, 70.0f, 85.0f}) {
+        Vec3 v = direction(thetaV, 0.0f);
+        double sum = 0, dTheta = 0.5 * kPiDouble / nTheta, dPhi = 2 * kPiDouble / nPhi;
+        for (int i = 0; i < nTheta; ++i) {
+          double t = (i + 0.5) * dTheta;
+          for (int j = 0; j < nPhi; ++j) {
+            double p = (j + 0.5) * dPhi;
+            Vec3 m(float(std::sin(t) * std::cos(p)), float(std::sin(t) * std::sin(p)), float(std::cos(t)));
+            double vm = dot(v, m);
+            if (vm <= 0) continue;
+            sum += microfacetG1(dist, alpha, v, m) * vm * microfacetD(dist, alpha, m) * std::sin(t) * dTheta * dPhi;
+          }
+        }
+        double tolerance = dist == MicrofacetKind::GGX ? 1e-3 : 5e-3;
+        EXPECT_NEAR(sum / v.z, 1.0, tolerance) << distributionName(dist) << " alpha " << alpha << " theta_v " << thetaV;
+      }
+    }
+  }
+}
+
+TEST(Microfacet, ShadowingIsAFraction) {
+  for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
+    for (float alpha : {0.1f, 0.5f, 1.0f}) {
+      Vec3 n(0, 0, 1);
+      EXPECT_FLOAT_EQ(microfacetG1(dist, alpha, n, n), 1.0f);
+      float previous = 1.0f;
+      for (float theta = 5; theta < 90; theta += 5) {
+        float g = microfacetG1(dist, alpha, direction(theta, 0.0f), n);
+        EXPECT_GE(g, 0.0f);
+        EXPECT_LE(g, previous + 1e-6f) << "G1 must not grow towards grazing angles";
+        previous = g;
+      }
+      // A microfacet facing away from the viewer is invisible.
+      EXPECT_EQ(microfacetG1(dist, alpha, direction(60.0f, 0.0f), direction(45.0f, 180.0f)), 0.0f);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------
+// The chi-square helper itself
+
+TEST(ChiSquareHelper, PValueMatchesKnownQuantiles) {
+  EXPECT_NEAR(test::chiSquarePValue(3.841459, 1), 0.05, 1e-6);
+  EXPECT_NEAR(test::chiSquarePValue(23.209251, 10), 0.01, 1e-6);
+  EXPECT_NEAR(test::chiSquarePValue(124.342, 100), 0.05, 1e-4);
+  for (double x : {0.5, 2.0, 10.0}) EXPECT_NEAR(test::chiSquarePValue(x, 2), std::exp(-x / 2), 1e-12);
+  // Large dof (as with thousands of bins): the statistic near its mean dof gives p near 0.5.
+  double p = test::chiSquarePValue(5000, 5000);
+  EXPECT_GT(p, 0.45);
+  EXPECT_LT(p, 0.5);
+}
+
+TEST(ChiSquareHelper, AcceptsACorrectSamplerAndRejectsWrongOnes) {
+  auto cosineSampler = [](uint64_t i, Vec3& d) {
+    d = squareToCosineHemisphere(testUniform(i, 0), testUniform(i, 1));
+    return true;
+  };
+  auto cosinePdf = [](Vec3 w) { return cosineHemispherePdf(w); };
+  test::ChiSquareResult good = test::chiSquareTest(cosineSampler, cosinePdf, 32, 64, 200000);
+  EXPECT_GT(good.pValue, kSignificance) << good.summary();
+  EXPECT_NEAR(good.pdfIntegral, 1.0, 1e-3);
+
+  // Wrong shape: uniform hemisphere pdf claimed for cosine-distributed samples.
+  auto uniformHemispherePdf = [](Vec3 w) { return w.z > 0 ? 0.5f * kInvPi : 0.0f; };
+  EXPECT_LT(test::chiSquareTest(cosineSampler, uniformHemispherePdf, 32, 64, 200000).pValue, 1e-6);
+
+  // Lost mass: a sampler that silently drops 2% of its samples.
+  auto lossySampler = [&](uint64_t i, Vec3& d) { return testUniform(i, 5) >= 0.02f && cosineSampler(i, d); };
+  test::ChiSquareResult lossy = test::chiSquareTest(lossySampler, cosinePdf, 32, 64, 200000);
+  EXPECT_LT(lossy.pValue, 1e-6) << lossy.summary();
+
+  // Samples where the pdf claims zero density.
+  auto spherePdfHalf = [](Vec3 w) { return w.z > 0 ? 0.25f * kInvPi : 0.0f; };
+  auto sphereSampler = [](uint64_t i, Vec3& d) {
+    d = squareToUniformSphere(testUniform(i, 0), testUniform(i, 1));
+    return true;
+  };
+  test::ChiSquareResult leak = test::chiSquareTest(sphereSampler, spherePdfHalf, 32, 64, 100000);
+  EXPECT_GT(leak.samplesInZeroPdfBins, 0u);
+  EXPECT_EQ(leak.pValue, 0.0);
+}
+
+}  // namespace
+}  // namespace erpt
