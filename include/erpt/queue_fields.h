@@ -45,3 +45,29 @@
   F(float, hitX, "first-hit position x, for the light pdf of BSDF-sampled emitter hits") \
   F(float, hitY, "first-hit position y")                               \
   F(float, hitZ, "first-hit position z")
+
+// A path of the wavefront path tracer, indexed by its id within the batch (it does not
+// move: compaction moves the slots that point at it).
+#define ERPT_PATH_FIELDS(F)                                                  \
+  F(uint32_t, pixel, "pixel index y * width + x")                            \
+  F(uint32_t, sample, "sample index within the pixel")                       \
+  F(uint32_t, depth, "segments traced so far (the camera ray is segment 1)") \
+  F(float, throughputR, "product of BSDF weights (f cos / pdf) / RR survival, red") \
+  F(float, throughputG, "green")                                             \
+  F(float, throughputB, "blue")                                              \
+  F(float, radianceR, "radiance gathered so far, red")                       \
+  F(float, radianceG, "green")                                               \
+  F(float, radianceB, "blue")                                                \
+  F(float, prevPdf, "solid-angle pdf of the last BSDF sample; 0 after a Dirac lobe or at the camera") \
+  F(float, prevX, "position of the vertex the current ray left, x (for emitter-hit MIS)") \
+  F(float, prevY, "y")                                                       \
+  F(float, prevZ, "z")
+
+// One live path's place in the ray streams: slot k of the ray, hit and shadow-ray queues
+// belongs to path `path`. Compaction moves slots; the path state stays where it is.
+#define ERPT_PATH_SLOT_FIELDS(F)                                              \
+  F(uint32_t, path, "path id (index into PathQueue)")                        \
+  F(uint8_t, alive, "1 while the path continues after this bounce")          \
+  F(float, neeR, "next-event contribution, added if the shadow ray is unoccluded, red") \
+  F(float, neeG, "green")                                                    \
+  F(float, neeB, "blue")

@@ -12,7 +12,7 @@
 namespace erpt {
 
 struct RenderSettings {
-  std::string integrator = "direct";
+  std::string integrator = "path";
   int width = 0, height = 0;  // 0: the scene's film size
   int spp = 0;                // 0: the scene's sample count
   int maxDepth = -2;          // -2: the scene's value

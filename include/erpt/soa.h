@@ -43,6 +43,7 @@ struct IndexRange {
 
 #define ERPT_SOA_COLUMN(type, name, doc) ::erpt::Column<type> name;
 #define ERPT_SOA_RESIZE(type, name, doc) name.resize(n);
+#define ERPT_SOA_COPY_ROW(type, name, doc) name[to] = from.name[at];
 #define ERPT_SOA_STRUCT(Name, FIELDS)             \
   struct Name {                                   \
     FIELDS(ERPT_SOA_COLUMN)                       \
@@ -52,4 +53,6 @@ struct IndexRange {
       count = n;                                  \
     }                                             \
     size_t size() const { return count; }         \
+    /* row `to` of this = row `at` of `from` */   \
+    void copyRow(size_t to, const Name& from, size_t at) { FIELDS(ERPT_SOA_COPY_ROW) } \
   };

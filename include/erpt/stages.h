@@ -3,6 +3,7 @@
 #pragma once
 
 #include "erpt/camera.h"
+#include "erpt/kernels.h"
 #include "erpt/light_sampler.h"
 #include "erpt/pixel_filter.h"
 #include "erpt/queues.h"
@@ -19,19 +20,36 @@ struct StageContext {
   int width;
   int spp;
   int maxDepth;
+  int rrDepth = 5;  // Russian roulette from this path depth on (Mitsuba's default)
 };
 
-// Random-number dimensions of one camera sample (stream key = (pixel, sample)).
-enum SampleDim : uint32_t {
-  kDimFilmX = 0, kDimFilmY, kDimLightPick, kDimLight1, kDimLight2, kDimLobe, kDimBsdf1, kDimBsdf2
-};
+// Random-number dimensions of one camera sample (stream key = (pixel, sample)): two for the
+// film position, then eight per bounce, so every number is addressed by (depth, use).
+constexpr uint32_t kDimFilmX = 0, kDimFilmY = 1;
+enum BounceDim : uint32_t { kLightPick = 0, kLight1, kLight2, kLobe, kBsdf1, kBsdf2, kRoulette, kBounceDims = 8 };
+inline uint32_t bounceDim(uint32_t depth, BounceDim use) { return 2 + kBounceDims * (depth - 1) + use; }
 
 uint64_t sampleKey(uint64_t seed, uint32_t pixel, uint32_t sample);
 
-// Camera rays for samples[range]: film positions stratified per pixel (Latin hypercube
-// over the pixel's samples) and importance-sampled from the pixel filter.
-void stageGenerateCameraRays(const StageContext& ctx, const DirectSampleQueue& samples, RayQueue& rays,
+// Camera rays for the samples (pixel[i], sample[i]), i in range: film positions stratified
+// per pixel (Latin hypercube over the pixel's samples) and importance-sampled from the pixel
+// filter.
+void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixel, const uint32_t* sample, RayQueue& rays,
                              IndexRange range);
+
+// Path tracer: shades the hits of the live slots in range: adds MIS-weighted emission, sets
+// up next-event shadow rays (contribution kept in the slot) and the next ray in place of the
+// current one; clears `alive` for paths that end (escaped, absorbed, roulette, max depth).
+void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& slots, RayQueue& rays,
+                    const HitQueue& hits, RayQueue& shadowRays, IndexRange range);
+
+// Adds the next-event contribution of every slot whose shadow ray was not occluded.
+void stageShadowResolve(const RayQueue& shadowRays, const PathSlotQueue& slots, PathQueue& paths, IndexRange range);
+
+// Stable compaction: keeps the slots with alive != 0 (and their rays), in order, moving them
+// to the front of `outSlots` / `outRays`. Returns the number kept.
+size_t stageCompact(const PathSlotQueue& slots, const RayQueue& rays, PathSlotQueue& outSlots, RayQueue& outRays,
+                    size_t count, size_t grain);
 
 // Direct lighting at the first hit: adds emission seen directly, fills `shadowRays` with
 // next-event rays (contribution kept in samples.shadow*) and `bsdfRays` with BSDF-sampled
@@ -43,11 +61,5 @@ void stageShadeDirect(const StageContext& ctx, const RayQueue& cameraRays, const
 // the BSDF rays.
 void stageGatherDirect(const StageContext& ctx, const RayQueue& shadowRays, const RayQueue& bsdfRays,
                        const HitQueue& bsdfHits, DirectSampleQueue& samples, IndexRange range);
-
-inline float powerHeuristic(float a, float b) {
-  a *= a;
-  b *= b;
-  return a + b > 0 ? a / (a + b) : 0.0f;
-}
 
 }  // namespace erpt

@@ -28,12 +28,31 @@ class Tracer {
   // Any-hit test for rays[range]: occluded rays get tfar = -inf.
   void occluded(RayQueue& rays, IndexRange range) const;
 
+  // The same, one ray at a time (rtcIntersect1 / rtcOccluded1): only for A/B benchmarks
+  // against the stream calls, never in the render path.
+  void intersectOneByOne(RayQueue& rays, HitQueue& hits, IndexRange range) const;
+  void occludedOneByOne(RayQueue& rays, IndexRange range) const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
-// Fills ray i of a queue (tnear 0, mask all, flags 0).
+// Sizes a ray queue for n rays and fills the columns Embree reads but we never change
+// (time 0, all mask bits, id, no flags), so stages write only origin, direction and interval.
+inline void prepareRays(RayQueue& q, size_t n) {
+  q.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    q.time[i] = 0;
+    q.mask[i] = 0xffffffffu;
+    q.id[i] = unsigned(i);
+    q.flags[i] = 0;
+    q.tnear[i] = 1.0f;  // inactive until a stage sets the ray
+    q.tfar[i] = 0.0f;
+  }
+}
+
+// Sets ray i of a queue made by prepareRays.
 inline void setRay(RayQueue& q, size_t i, Vec3 org, Vec3 dir, float tnear, float tfar) {
   q.orgX[i] = org.x;
   q.orgY[i] = org.y;
@@ -43,13 +62,12 @@ inline void setRay(RayQueue& q, size_t i, Vec3 org, Vec3 dir, float tnear, float
   q.dirZ[i] = dir.z;
   q.tnear[i] = tnear;
   q.tfar[i] = tfar;
-  q.time[i] = 0;
-  q.mask[i] = 0xffffffffu;
-  q.id[i] = unsigned(i);
-  q.flags[i] = 0;
 }
 
 // Marks ray i as inactive: Embree skips rays whose interval is empty.
-inline void disableRay(RayQueue& q, size_t i) { setRay(q, i, Vec3(0.0f), Vec3(0, 0, 1), 1.0f, 0.0f); }
+inline void disableRay(RayQueue& q, size_t i) {
+  q.tnear[i] = 1.0f;
+  q.tfar[i] = 0.0f;
+}
 
 }  // namespace erpt

@@ -24,7 +24,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
   CLI::App* cmd = app.add_subcommand("render", "Render a Mitsuba XML scene to a linear EXR and a tone-mapped PNG");
   cmd->add_option("scene", a.scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required();
   cmd->add_option("-o,--output", a.output, "Output EXR path; the PNG is written beside it")->required();
-  cmd->add_option("--integrator", a.integrator, "Integrator: direct (default; the path tracer and ERPT land later)");
+  cmd->add_option("--integrator", a.integrator, "Integrator: path (default: wavefront path tracer) or direct (direct lighting, for debugging)");
   cmd->add_option("--spp", a.spp, "Samples per pixel (default: the scene's sample_count)")->check(CLI::Range(1, 1 << 24));
   cmd->add_option("--width", a.width, "Image width in pixels (default: the scene's film)")->check(CLI::Range(1, 65536));
   cmd->add_option("--height", a.height, "Image height in pixels (default: the scene's film)")->check(CLI::Range(1, 65536));

@@ -37,7 +37,7 @@ RgbImage renderDirect(const Scene& scene, const RenderSettings& settings, Render
 
   for (size_t batchStart = 0; batchStart < total; batchStart += kBatchSamples) {
     const size_t n = std::min(kBatchSamples, total - batchStart);
-    for (auto* q : {&cameraRays, &shadowRays, &bsdfRays}) q->resize(n);
+    for (auto* q : {&cameraRays, &shadowRays, &bsdfRays}) prepareRays(*q, n);
     for (auto* q : {&cameraHits, &bsdfHits}) q->resize(n);
     samples.resize(n);
     // Slot j of the batch is sample (batchStart + j) % spp of pixel order[(batchStart + j) / spp].
@@ -45,7 +45,7 @@ RgbImage renderDirect(const Scene& scene, const RenderSettings& settings, Render
       samples.pixel[j] = order[(batchStart + j) / spp];
       samples.sample[j] = uint32_t((batchStart + j) % spp);
     }
-    forEachRange("generate", n, kGrain, [&](IndexRange r) { stageGenerateCameraRays(ctx, samples, cameraRays, r); },
+    forEachRange("generate", n, kGrain, [&](IndexRange r) { stageGenerateCameraRays(ctx, samples.pixel.data(), samples.sample.data(), cameraRays, r); },
                  &stats.stages);
     forEachRange("intersect", n, kGrain,
                  [&](IndexRange r) { tracer.intersect(cameraRays, cameraHits, r, RayCoherence::Coherent); },

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "direct_integrator.h"
+#include "path_integrator.h"
 
 namespace erpt {
 
@@ -15,13 +16,15 @@ RenderSettings resolveSettings(const Scene& scene, RenderSettings s) {
   return s;
 }
 
-const char* integratorNames() { return "direct"; }
+const char* integratorNames() { return "path, direct"; }
 
 RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
   RenderSettings s = resolveSettings(scene, requested);
   auto start = std::chrono::steady_clock::now();
   RgbImage image;
-  if (s.integrator == "direct")
+  if (s.integrator == "path")
+    image = renderPath(scene, s, stats);
+  else if (s.integrator == "direct")
     image = renderDirect(scene, s, stats);
   else
     throw UsageError("unknown integrator '" + s.integrator + "' (available: " + integratorNames() + ")");

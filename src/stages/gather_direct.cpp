@@ -17,7 +17,7 @@ void stageGatherDirect(const StageContext& ctx, const RayQueue& shadowRays, cons
       Vec3 dir{bsdfRays.dirX[i], bsdfRays.dirY[i], bsdfRays.dirZ[i]};
       float pdf = q.bsdfPdf[i];  // 0: a Dirac lobe, which next-event estimation cannot produce
       if (bsdfHits.geomID[i] == kNoHit) {
-        if (env) total += weight * env->radiance * (pdf > 0 ? powerHeuristic(pdf, ctx.lights.pdfEnvironment()) : 1.0f);
+        if (env) total += weight * env->radiance * emitterHitWeight(pdf, ctx.lights.pdfEnvironment());
       } else {
         uint32_t tri = bsdfHits.primID[i];
         Color le = ctx.lights.emitted(tri, -dir);
@@ -25,7 +25,7 @@ void stageGatherDirect(const StageContext& ctx, const RayQueue& shadowRays, cons
           SurfacePoint lp = surfaceAt(ctx.scene.mesh, tri, bsdfHits.u[i], bsdfHits.v[i]);
           Vec3 from{q.hitX[i], q.hitY[i], q.hitZ[i]};
           float lightPdf = ctx.lights.pdfTriangle(tri, from, lp.position, lp.geometricNormal);
-          total += weight * le * (pdf > 0 ? powerHeuristic(pdf, lightPdf) : 1.0f);
+          total += weight * le * emitterHitWeight(pdf, lightPdf);
         }
       }
     }

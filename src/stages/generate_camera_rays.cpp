@@ -6,11 +6,11 @@ namespace erpt {
 
 uint64_t sampleKey(uint64_t seed, uint32_t pixel, uint32_t sample) { return streamKey(seed, pixel, sample); }
 
-void stageGenerateCameraRays(const StageContext& ctx, const DirectSampleQueue& samples, RayQueue& rays,
+void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixels, const uint32_t* samples, RayQueue& rays,
                              IndexRange range) {
   const uint32_t spp = uint32_t(ctx.spp);
   for (size_t i = range.begin; i < range.end; ++i) {
-    uint32_t pixel = samples.pixel[i], s = samples.sample[i];
+    uint32_t pixel = pixels[i], s = samples[i];
     uint64_t key = sampleKey(ctx.seed, pixel, s);
     // Sample s takes stratum s in x and a per-pixel permuted stratum in y.
     uint32_t pixelKey = uint32_t(streamKey(ctx.seed, pixel, ~0ull));

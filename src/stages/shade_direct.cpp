@@ -38,23 +38,17 @@ void stageShadeDirect(const StageContext& ctx, const RayQueue& cameraRays, const
         Vec3 wi = sp.shading.toLocal(-dir);
 
         // Next-event estimation, MIS-weighted against BSDF sampling.
-        LightSample ls;
-        if (ctx.lights.sample(sp.position, uniformFloat(key, kDimLightPick), uniformFloat(key, kDimLight1),
-                              uniformFloat(key, kDimLight2), ls)) {
-          Color f = bsdfEval(m, colors, wi, sp.shading.toLocal(ls.direction));
-          if (!isBlack(f)) {
-            float w = ls.delta ? 1.0f : powerHeuristic(ls.pdf, bsdfPdf(m, colors, wi, sp.shading.toLocal(ls.direction)));
-            shadow = ls.delta ? f * ls.radiance : f * ls.radiance * (w / ls.pdf);
-            Vec3 org = offsetOrigin(sp.position, sp.geometricNormal, ls.direction);
-            float tfar = ls.environment ? std::numeric_limits<float>::infinity() : length(ls.position - org) * (1 - 1e-4f);
-            setRay(shadowRays, i, org, ls.direction, 0.0f, tfar);
-          }
+        LightConnection lc;
+        if (connectToLight(ctx.lights, sp, m, colors, wi, uniformFloat(key, bounceDim(1, kLightPick)),
+                           uniformFloat(key, bounceDim(1, kLight1)), uniformFloat(key, bounceDim(1, kLight2)), lc)) {
+          shadow = lc.contribution;
+          setRay(shadowRays, i, lc.origin, lc.direction, 0.0f, lc.tfar);
         }
 
         // BSDF sampling: its ray may find an emitter (handled in stageGatherDirect).
         BsdfSample bs;
-        if (bsdfSample(m, colors, wi, uniformFloat(key, kDimLobe), uniformFloat(key, kDimBsdf1),
-                       uniformFloat(key, kDimBsdf2), bs) &&
+        if (bsdfSample(m, colors, wi, uniformFloat(key, bounceDim(1, kLobe)), uniformFloat(key, bounceDim(1, kBsdf1)),
+                       uniformFloat(key, bounceDim(1, kBsdf2)), bs) &&
             !isBlack(bs.weight)) {
           Vec3 wo = sp.shading.toWorld(bs.wo);
           bsdfWeight = bs.weight;

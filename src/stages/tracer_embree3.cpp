@@ -97,4 +97,50 @@ void Tracer::occluded(RayQueue& rays, IndexRange range) const {
   rtcOccludedNp(impl_->scene, &ctx, &r, unsigned(range.size()));
 }
 
+namespace {
+RTCRay scalarRay(const RayQueue& q, size_t i) {
+  RTCRay r;
+  r.org_x = q.orgX[i];
+  r.org_y = q.orgY[i];
+  r.org_z = q.orgZ[i];
+  r.tnear = q.tnear[i];
+  r.dir_x = q.dirX[i];
+  r.dir_y = q.dirY[i];
+  r.dir_z = q.dirZ[i];
+  r.time = q.time[i];
+  r.tfar = q.tfar[i];
+  r.mask = q.mask[i];
+  r.id = q.id[i];
+  r.flags = q.flags[i];
+  return r;
+}
+}  // namespace
+
+void Tracer::intersectOneByOne(RayQueue& rays, HitQueue& hits, IndexRange range) const {
+  RTCIntersectContext ctx = makeContext(RayCoherence::Incoherent);
+  for (size_t i = range.begin; i < range.end; ++i) {
+    RTCRayHit rh;
+    rh.ray = scalarRay(rays, i);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl_->scene, &ctx, &rh);
+    rays.tfar[i] = rh.ray.tfar;
+    hits.ngX[i] = rh.hit.Ng_x;
+    hits.ngY[i] = rh.hit.Ng_y;
+    hits.ngZ[i] = rh.hit.Ng_z;
+    hits.u[i] = rh.hit.u;
+    hits.v[i] = rh.hit.v;
+    hits.primID[i] = rh.hit.primID;
+    hits.geomID[i] = rh.hit.geomID;
+  }
+}
+
+void Tracer::occludedOneByOne(RayQueue& rays, IndexRange range) const {
+  RTCIntersectContext ctx = makeContext(RayCoherence::Incoherent);
+  for (size_t i = range.begin; i < range.end; ++i) {
+    RTCRay r = scalarRay(rays, i);
+    rtcOccluded1(impl_->scene, &ctx, &r);
+    rays.tfar[i] = r.tfar;
+  }
+}
+
 }  // namespace erpt

@@ -75,6 +75,9 @@ const BadCase kCases[] = {
      -1, nullptr, "-D expects name=value"},
 };
 
+// Readable test names in ctest output instead of a byte dump.
+void PrintTo(const BadCase& c, std::ostream* os) { *os << c.name; }
+
 class BadInput : public ::testing::TestWithParam<BadCase> {};
 
 TEST_P(BadInput, ClearErrorNonZeroExitNoOutput) {

@@ -17,6 +17,7 @@ TEST(Alignment, CornellLightCoversTheSamePixelsAsTheReference) {
   const int size = 256, factor = ref.width / size;
   Scene scene = loadScene(dir + "/scene.xml");
   RenderSettings s;
+  s.integrator = "direct";
   s.width = s.height = size;
   s.spp = 16;
   s.maxDepth = 1;

@@ -4,6 +4,7 @@
 #include "erpt/camera.h"
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
+#include "support/image_stats.h"
 #include "support/test_support.h"
 
 namespace erpt {
@@ -11,13 +12,7 @@ namespace {
 
 using test::TempDir;
 
-Color meanOf(const RgbImage& img) {
-  double s[3] = {0, 0, 0};
-  for (const Color& c : img.pixels)
-    for (int i = 0; i < 3; ++i) s[i] += c[i];
-  double n = double(img.pixels.size());
-  return Color(float(s[0] / n), float(s[1] / n), float(s[2] / n));
-}
+using test::meanOf;
 
 // The camera sits inside a sphere whose inner side emits Le and reflects diffusely with
 // albedo a. Direct lighting sees Le plus one bounce of the enclosure's emission:
@@ -37,6 +32,7 @@ TEST(StatisticalDirect, FurnaceSphereMatchesClosedForm) {
   TempDir dir;
   Scene scene = loadScene(dir.write("s.xml", furnaceScene(R"(<bsdf type="diffuse"><rgb name="reflectance" value="0.5, 0.8, 0.3"/></bsdf>)")));
   RenderSettings s;
+  s.integrator = "direct";
   s.spp = 64;
   s.seed = 3;
   RenderStats stats;
@@ -63,6 +59,7 @@ TEST(Direct, PointLightOverDiffusePlaneMatchesInverseSquareLaw) {
     <emitter type="point"><point name="position" value="0.3, -0.2, 1"/><rgb name="intensity" value="5"/></emitter>
   </scene>)"));
   RenderSettings s;
+  s.integrator = "direct";
   s.spp = 16;
   RenderStats stats;
   RgbImage img = render(scene, s, stats);
@@ -84,6 +81,7 @@ TEST(Direct, PointLightOverDiffusePlaneMatchesInverseSquareLaw) {
 TEST(Direct, SameSeedSameImageForAnyThreadCount) {
   Scene scene = loadScene(test::sourceDir() + "/scenes/default/scene.xml");
   RenderSettings s;
+  s.integrator = "direct";
   s.width = 48;
   s.height = 48;
   s.spp = 4;

@@ -1,0 +1,28 @@
+#include <limits>
+
+#include "erpt/kernels.h"
+
+namespace erpt {
+
+bool connectToLight(const LightSampler& lights, const SurfacePoint& sp, const Material& m, const SurfaceColors& colors,
+                    Vec3 wiLocal, float uPick, float u1, float u2, LightConnection& out) {
+  if (m.isPureSpecular()) return false;  // eval() would be 0 for every light direction
+  LightSample ls;
+  if (!lights.sample(sp.position, uPick, u1, u2, ls)) return false;
+  Vec3 woLocal = sp.shading.toLocal(ls.direction);
+  Color f = bsdfEval(m, colors, wiLocal, woLocal);
+  if (isBlack(f)) return false;
+  if (ls.delta) {
+    out.contribution = f * ls.radiance;
+  } else {
+    float w = powerHeuristic(ls.pdf, bsdfPdf(m, colors, wiLocal, woLocal));
+    out.contribution = f * ls.radiance * (w / ls.pdf);
+  }
+  out.origin = offsetOrigin(sp.position, sp.geometricNormal, ls.direction);
+  out.direction = ls.direction;
+  // Stop just short of the light point so its own surface does not occlude it.
+  out.tfar = ls.environment ? std::numeric_limits<float>::infinity() : length(ls.position - out.origin) * (1 - 1e-4f);
+  return true;
+}
+
+}  // namespace erpt

@@ -1,0 +1,107 @@
+// `--integrator path`: the wavefront path tracer (BSDF importance sampling, next-event
+// estimation with MIS, Russian roulette). It is also the Monte Carlo seed sampler of ERPT.
+//
+// Samples are processed in batches of paths. Each bounce runs the stages
+//   intersect -> shade -> shadow (occlusion stream) -> compact
+// over the live slots only, until no path of the batch is left; then the batch's radiance
+// goes to the film in path order, so the image does not depend on the thread count.
+#include <atomic>
+#include <chrono>
+
+#include "erpt/film.h"
+#include "erpt/stages.h"
+#include "erpt/tracer.h"
+#include "path_integrator.h"
+#include "pixel_order.h"
+
+namespace erpt {
+
+namespace {
+constexpr size_t kBatchPaths = 1 << 17;
+constexpr size_t kGrain = 512;
+
+void initPaths(PathQueue& paths, PathSlotQueue& slots, const std::vector<uint32_t>& order, size_t spp,
+               size_t first, IndexRange r) {
+  for (size_t i = r.begin; i < r.end; ++i) {
+    paths.pixel[i] = order[(first + i) / spp];
+    paths.sample[i] = uint32_t((first + i) % spp);
+    paths.depth[i] = 1;
+    paths.throughputR[i] = paths.throughputG[i] = paths.throughputB[i] = 1;
+    paths.radianceR[i] = paths.radianceG[i] = paths.radianceB[i] = 0;
+    paths.prevPdf[i] = 0;
+    slots.path[i] = uint32_t(i);
+  }
+}
+}  // namespace
+
+RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderStats& stats) {
+  ThreadPool pool(settings.threads);
+  Tracer tracer(scene);
+  Camera camera(scene.camera, settings.width, settings.height);
+  PixelFilter filter(settings.filter);
+  LightSampler lights(scene);
+  StageContext ctx{scene, camera, filter, lights, settings.seed, settings.width, settings.spp, settings.maxDepth};
+  Film film(settings.width, settings.height);
+
+  const std::vector<uint32_t> order = tiledPixelOrder(settings.width, settings.height);
+  const size_t spp = size_t(settings.spp), total = order.size() * spp;
+  PathQueue paths;
+  PathSlotQueue slots[2];
+  RayQueue rays[2], shadowRays;
+  HitQueue hits;
+  std::atomic<uint64_t> rayCount{0};
+  uint64_t invalid = 0;
+
+  for (size_t first = 0; first < total; first += kBatchPaths) {
+    const size_t n = std::min(kBatchPaths, total - first);
+    paths.resize(n);
+    for (int b = 0; b < 2; ++b) {
+      slots[b].resize(n);
+      prepareRays(rays[b], n);
+    }
+    prepareRays(shadowRays, n);
+    hits.resize(n);
+    int cur = 0;
+    forEachRange("generate", n, kGrain, [&](IndexRange r) {
+      initPaths(paths, slots[cur], order, spp, first, r);
+      stageGenerateCameraRays(ctx, paths.pixel.data(), paths.sample.data(), rays[cur], r);
+    }, &stats.stages);
+
+    for (size_t live = n, bounce = 0; live > 0; ++bounce) {
+      RayCoherence coherence = bounce == 0 ? RayCoherence::Coherent : RayCoherence::Incoherent;
+      rayCount += live;
+      forEachRange("intersect", live, kGrain,
+                   [&](IndexRange r) { tracer.intersect(rays[cur], hits, r, coherence); }, &stats.stages);
+      forEachRange("shade", live, kGrain,
+                   [&](IndexRange r) { stageShadePath(ctx, paths, slots[cur], rays[cur], hits, shadowRays, r); },
+                   &stats.stages);
+      forEachRange("shadow", live, kGrain, [&](IndexRange r) {
+        uint64_t traced = 0;
+        for (size_t k = r.begin; k < r.end; ++k) traced += shadowRays.tnear[k] <= shadowRays.tfar[k];
+        rayCount += traced;
+        tracer.occluded(shadowRays, r);
+        stageShadowResolve(shadowRays, slots[cur], paths, r);
+      }, &stats.stages);
+      auto start = std::chrono::steady_clock::now();
+      live = stageCompact(slots[cur], rays[cur], slots[1 - cur], rays[1 - cur], live, kGrain);
+      stats.stages.add("compact", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      cur = 1 - cur;
+    }
+
+    for (size_t i = 0; i < n; ++i) {
+      Color c{paths.radianceR[i], paths.radianceG[i], paths.radianceB[i]};
+      if (!isFinite(c)) {
+        ++invalid;  // a NaN/Inf estimate is dropped and counted, never accumulated
+        continue;
+      }
+      film.add(paths.pixel[i], c);
+    }
+    if (settings.progress) settings.progress(double(first + n) / double(total));
+  }
+  stats.samples = total;
+  stats.rays = rayCount;
+  stats.invalidSamples = invalid;
+  return film.resolve(double(spp));
+}
+
+}  // namespace erpt

@@ -1,0 +1,31 @@
+// Stable stream compaction of the live slots, in two parallel passes: count survivors per
+// block, then (after an exclusive scan of the block counts) scatter them in order.
+#include <tbb/parallel_for.h>
+
+#include "erpt/stages.h"
+
+namespace erpt {
+
+size_t stageCompact(const PathSlotQueue& slots, const RayQueue& rays, PathSlotQueue& outSlots, RayQueue& outRays,
+                    size_t count, size_t grain) {
+  const size_t blocks = (count + grain - 1) / grain;
+  std::vector<size_t> offset(blocks + 1, 0);
+  tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+    size_t n = 0;
+    for (size_t k = b * grain; k < std::min(count, (b + 1) * grain); ++k) n += slots.alive[k] != 0;
+    offset[b + 1] = n;
+  });
+  for (size_t b = 0; b < blocks; ++b) offset[b + 1] += offset[b];
+  tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+    size_t out = offset[b];
+    for (size_t k = b * grain; k < std::min(count, (b + 1) * grain); ++k) {
+      if (!slots.alive[k]) continue;
+      outSlots.copyRow(out, slots, k);
+      outRays.copyRow(out, rays, k);
+      ++out;
+    }
+  });
+  return offset[blocks];
+}
+
+}  // namespace erpt
