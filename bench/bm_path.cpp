@@ -41,7 +41,7 @@ struct PathFixture {
     stageGenerateCameraRays(ctx, paths.pixel.data(), paths.sample.data(), cameraRays, {0, kPaths});
     tracer.intersect(cameraRays, hits, {0, kPaths}, RayCoherence::Coherent);
     bounceRays = cameraRays;
-    stageShadePath(ctx, paths, slots, bounceRays, hits, shadowRays, {0, kPaths});
+    stageShadePath(ctx, paths, slots, bounceRays, hits, shadowRays, {}, {0, kPaths});
   }
   void resetPaths() {
     for (size_t i = 0; i < kPaths; ++i) {
@@ -51,6 +51,7 @@ struct PathFixture {
       paths.throughputR[i] = paths.throughputG[i] = paths.throughputB[i] = 1;
       paths.radianceR[i] = paths.radianceG[i] = paths.radianceB[i] = 0;
       paths.prevPdf[i] = 0;
+      paths.pLength[i] = 1;
       slots.path[i] = uint32_t(i);
     }
   }
@@ -120,7 +121,7 @@ void BM_StageShade(benchmark::State& state) {
     rays = f.cameraRays;
     state.ResumeTiming();
     forEachRange("shade", kPaths, kGrain,
-                 [&](IndexRange r) { stageShadePath(f.ctx, f.paths, f.slots, rays, f.hits, shadow, r); });
+                 [&](IndexRange r) { stageShadePath(f.ctx, f.paths, f.slots, rays, f.hits, shadow, {}, r); });
   }
   setRate(state, "paths/s", kPaths);
 }

@@ -21,6 +21,12 @@ float bsdfPdf(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo);
 // u1 picks a lobe, (u2, u3) the direction. Returns false when nothing can be sampled.
 bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wi, float u1, float u2, float u3, BsdfSample& out);
 
+// The Dirac lobe that maps wi to wo (reflection when both lie on the same side, else
+// transmission): its value (what sample() returns as weight times `probability`) and the
+// probability p_s that sample() picks it. False if the material has no such lobe. Used to
+// re-evaluate specular vertices of stored paths (ERPT seeds, density rule 2).
+bool bsdfDeltaLobe(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo, Color& value, float& probability);
+
 // Computes the derived fields of a material (plastic's Fdr and coat sampling weight).
 void finalizeMaterial(Material& m);
 

@@ -27,6 +27,9 @@ struct LightConnection {
   Vec3 origin, direction;
   float tfar;
   Color contribution;  // f * cos * Le * MIS weight / pdf (without the path throughput)
+  float misWeight;     // the MIS weight included in `contribution`
+  float bsdfPdf;       // BSDF pdf of `direction` (what BSDF sampling would have used)
+  LightSample light;   // the light point
 };
 
 // Next-event estimation at a surface point; false when the sample carries nothing.

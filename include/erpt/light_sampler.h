@@ -18,6 +18,8 @@ struct LightSample {
   float distance;    // to the light point (infinite lights: +inf)
   Color radiance;    // radiance arriving along -direction (point light: intensity / d^2)
   float pdf;         // solid angle pdf at the reference point (0 for a point light: a Dirac)
+  float pdfLight;    // in the light's own measure: area lights p_light * p_area (area measure),
+                     // point lights the pick probability, the environment its solid-angle pdf
   bool delta;        // point light: cannot be hit by BSDF sampling
   bool environment;
 };
@@ -32,6 +34,10 @@ class LightSampler {
   // from `ref`.
   float pdfTriangle(uint32_t tri, Vec3 ref, Vec3 p, Vec3 n) const;
   float pdfEnvironment() const;
+  // Area-measure density of next-event estimation picking a point on triangle `tri`
+  // (p_light * p_area); for a point light, the probability of picking it.
+  float pdfAreaTriangle(uint32_t tri) const;
+  float pickProbabilityOfEmitter(int emitter) const;
   // Radiance an area light emits from triangle `tri` towards direction `w` (one-sided).
   Color emitted(uint32_t tri, Vec3 w) const;
   const Scene& scene() const { return scene_; }
@@ -47,6 +53,7 @@ class LightSampler {
   std::vector<Item> items_;
   std::vector<float> cdf_;  // normalized, cdf_.back() == 1
   std::vector<float> triangleProbability_;  // per scene triangle (0 if not emissive)
+  std::vector<float> emitterProbability_;   // per point / environment emitter
   float environmentProbability_ = 0;
   float sceneRadius_ = 1;
   Vec3 sceneCenter_;

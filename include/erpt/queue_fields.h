@@ -61,7 +61,11 @@
   F(float, prevPdf, "solid-angle pdf of the last BSDF sample; 0 after a Dirac lobe or at the camera") \
   F(float, prevX, "position of the vertex the current ray left, x (for emitter-hit MIS)") \
   F(float, prevY, "y")                                                       \
-  F(float, prevZ, "z")
+  F(float, prevZ, "z")                                                       \
+  F(float, filmX, "film position of the camera ray, x in pixels")           \
+  F(float, filmY, "film position, y in pixels")                              \
+  F(float, pLength, "product of Russian-roulette survival probabilities so far (ERPT's p_length)") \
+  F(int32_t, lastVertex, "seed recording: index of the path's newest vertex in the vertex history")
 
 // One live path's place in the ray streams: slot k of the ray, hit and shadow-ray queues
 // belongs to path `path`. Compaction moves slots; the path state stays where it is.
@@ -70,4 +74,56 @@
   F(uint8_t, alive, "1 while the path continues after this bounce")          \
   F(float, neeR, "next-event contribution, added if the shadow ray is unoccluded, red") \
   F(float, neeG, "green")                                                    \
-  F(float, neeB, "blue")
+  F(float, neeB, "blue")                                                     \
+  /* Seed recording only: what the contributions of this bounce were made of. */ \
+  F(float, pLengthHere, "p_length of the paths ending at this hit (before this bounce's roulette)") \
+  F(float, emitWeight, "MIS weight of emission found at this hit (0: none)") \
+  F(float, emitR, "unweighted estimate of that emission (throughput * Le), red") \
+  F(float, emitG, "green")                                                   \
+  F(float, emitB, "blue")                                                    \
+  F(float, neeWeight, "MIS weight of the next-event connection (0: none)")   \
+  F(float, neeBsdfPdf, "BSDF pdf of the connection direction")                \
+  F(float, neeLightPdf, "area-measure density of the light point (p_light * p_area)") \
+  F(uint8_t, neeLightKind, "VertexKind of the light vertex")                 \
+  F(float, neeLightX, "light point x (environment: a point far along the direction)") \
+  F(float, neeLightY, "y")                                                   \
+  F(float, neeLightZ, "z")                                                   \
+  F(float, neeLightNX, "light surface normal x")                             \
+  F(float, neeLightNY, "y")                                                  \
+  F(float, neeLightNZ, "z")
+
+// A path vertex, both in the path tracer's per-batch vertex history (where `parent` links a
+// vertex to the one before it on the same path) and in the seed store (where a seed's
+// vertices are consecutive, eye first).
+#define ERPT_VERTEX_FIELDS(F)                                                 \
+  F(float, px, "position x")                                                 \
+  F(float, py, "y")                                                          \
+  F(float, pz, "z")                                                          \
+  F(float, nsX, "shading normal x")                                          \
+  F(float, nsY, "y")                                                         \
+  F(float, nsZ, "z")                                                         \
+  F(float, ngX, "geometric normal x (unit, from the triangle winding)")      \
+  F(float, ngY, "y")                                                         \
+  F(float, ngZ, "z")                                                         \
+  F(int32_t, material, "material index (-1 for eye and environment vertices)") \
+  F(float, u, "texture coordinate u")                                        \
+  F(float, v, "texture coordinate v")                                        \
+  F(uint8_t, kind, "VertexKind")                                             \
+  F(float, pdfForward, "p_d of the direction sampled from here to the next vertex (solid angle); for a specular vertex the probability p_s of the lobe taken") \
+  F(int32_t, parent, "previous vertex of the same path, -1 at the eye")
+
+// One seed for ERPT: a complete path (one contributing light connection) and how the path
+// tracer sampled it. X_f (what the path tracer added to the image) = misWeight * estimate.
+#define ERPT_SEED_FIELDS(F)                                                   \
+  F(uint32_t, pixel, "pixel index y * width + x")                            \
+  F(float, filmX, "film position x in pixels")                               \
+  F(float, filmY, "film position y in pixels")                               \
+  F(uint8_t, explicitLight, "1: reached the light by next-event estimation; 0: a BSDF sample hit it") \
+  F(float, misWeight, "MIS weight of this technique for this path")         \
+  F(float, estimateR, "unweighted estimate f / p of the path, red")          \
+  F(float, estimateG, "green")                                               \
+  F(float, estimateB, "blue")                                                \
+  F(float, pLength, "product of Russian-roulette survival probabilities (p_length)") \
+  F(float, pLight, "explicit: area density of the light point (p_light * p_area); implicit: what NEE would have used") \
+  F(uint32_t, vertexBegin, "first vertex in the seed store's vertex queue")  \
+  F(uint32_t, vertexCount, "vertices, eye and light included")

@@ -11,5 +11,9 @@ ERPT_SOA_STRUCT(HitQueue, ERPT_HIT_FIELDS)
 ERPT_SOA_STRUCT(DirectSampleQueue, ERPT_DIRECT_SAMPLE_FIELDS)
 ERPT_SOA_STRUCT(PathQueue, ERPT_PATH_FIELDS)
 ERPT_SOA_STRUCT(PathSlotQueue, ERPT_PATH_SLOT_FIELDS)
+ERPT_SOA_STRUCT(VertexQueue, ERPT_VERTEX_FIELDS)
+ERPT_SOA_STRUCT(SeedQueue, ERPT_SEED_FIELDS)
+
+enum VertexKind : uint8_t { kEyeVertex = 0, kNonSpecularVertex, kSpecularVertex, kLightVertex, kEnvironmentVertex };
 
 }  // namespace erpt

@@ -8,6 +8,7 @@
 #include "erpt/image_io.h"
 #include "erpt/parallel.h"
 #include "erpt/scene.h"
+#include "erpt/seeds.h"
 
 namespace erpt {
 
@@ -21,6 +22,7 @@ struct RenderSettings {
   bool filterSet = false;     // false: the scene's rfilter
   FilterKind filter = FilterKind::Box;
   std::function<void(double fraction)> progress;  // called from the rendering thread
+  SeedStore* seeds = nullptr;  // path tracer: when set, every contribution is recorded as a seed
 };
 
 struct RenderStats {

@@ -7,6 +7,7 @@
 #include "erpt/light_sampler.h"
 #include "erpt/pixel_filter.h"
 #include "erpt/queues.h"
+#include "erpt/seeds.h"
 
 namespace erpt {
 
@@ -34,14 +35,29 @@ uint64_t sampleKey(uint64_t seed, uint32_t pixel, uint32_t sample);
 // Camera rays for the samples (pixel[i], sample[i]), i in range: film positions stratified
 // per pixel (Latin hypercube over the pixel's samples) and importance-sampled from the pixel
 // filter.
+// filmX/filmY (optional) receive the film positions.
 void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixel, const uint32_t* sample, RayQueue& rays,
-                             IndexRange range);
+                             IndexRange range, float* filmX = nullptr, float* filmY = nullptr);
+
+// Seed recording: the batch's vertex history and where this bounce's vertices start (the
+// vertex of slot k is base + k). vertices == nullptr: not recording.
+struct VertexHistory {
+  VertexQueue* vertices = nullptr;
+  size_t base = 0;
+};
 
 // Path tracer: shades the hits of the live slots in range: adds MIS-weighted emission, sets
 // up next-event shadow rays (contribution kept in the slot) and the next ray in place of the
 // current one; clears `alive` for paths that end (escaped, absorbed, roulette, max depth).
+// When recording, also writes each hit to the vertex history and notes in the slot what the
+// bounce's contributions were made of.
 void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& slots, RayQueue& rays,
-                    const HitQueue& hits, RayQueue& shadowRays, IndexRange range);
+                    const HitQueue& hits, RayQueue& shadowRays, VertexHistory history, IndexRange range);
+
+// After the shadow stage: appends a seed for every contribution of this bounce (emission
+// found by the BSDF sample; unoccluded next-event connection), in slot order.
+void stageRecordSeeds(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots, const HitQueue& hits,
+                      const RayQueue& shadowRays, const VertexHistory& history, size_t live, SeedStore& store);
 
 // Adds the next-event contribution of every slot whose shadow ray was not occluded.
 void stageShadowResolve(const RayQueue& shadowRays, const PathSlotQueue& slots, PathQueue& paths, IndexRange range);

@@ -12,11 +12,14 @@ bool connectToLight(const LightSampler& lights, const SurfacePoint& sp, const Ma
   Vec3 woLocal = sp.shading.toLocal(ls.direction);
   Color f = bsdfEval(m, colors, wiLocal, woLocal);
   if (isBlack(f)) return false;
+  out.bsdfPdf = bsdfPdf(m, colors, wiLocal, woLocal);
+  out.light = ls;
   if (ls.delta) {
+    out.misWeight = 1;
     out.contribution = f * ls.radiance;
   } else {
-    float w = powerHeuristic(ls.pdf, bsdfPdf(m, colors, wiLocal, woLocal));
-    out.contribution = f * ls.radiance * (w / ls.pdf);
+    out.misWeight = powerHeuristic(ls.pdf, out.bsdfPdf);
+    out.contribution = f * ls.radiance * (out.misWeight / ls.pdf);
   }
   out.origin = offsetOrigin(sp.position, sp.geometricNormal, ls.direction);
   out.direction = ls.direction;

@@ -205,6 +205,43 @@ bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wiWorldSide, flo
   return true;
 }
 
+bool bsdfDeltaLobe(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo, Color& value, float& probability) {
+  const bool reflection = wi.z * wo.z > 0;
+  switch (m.kind) {
+    case BsdfKind::Dielectric: {
+      float f = fresnelDielectric(wi.z, m.relativeIOR());
+      float scale = wi.z > 0 ? 1.0f / m.relativeIOR() : m.relativeIOR();
+      probability = reflection ? f : 1 - f;
+      value = reflection ? c.specularReflectance * f : c.specularTransmittance * ((1 - f) * scale * scale);
+      return probability > 0;
+    }
+    case BsdfKind::ThinDielectric: {
+      float r = fresnelDielectric(std::abs(wi.z), m.relativeIOR());
+      if (r < 1) r += (1 - r) * (1 - r) * r / (1 - r * r);
+      probability = reflection ? r : 1 - r;
+      value = (reflection ? c.specularReflectance : c.specularTransmittance) * probability;
+      return probability > 0;
+    }
+    case BsdfKind::Conductor:
+    case BsdfKind::Plastic: {
+      float flip = sideFlip(m, wi);
+      if (!reflection || flip == 0) return false;
+      float cosI = wi.z * flip;
+      if (m.kind == BsdfKind::Conductor) {
+        probability = 1;
+        value = c.specularReflectance * fresnelConductor(cosI, m.eta, m.k);
+      } else {
+        float fi = fresnelDielectric(cosI, m.relativeIOR());
+        probability = plasticSpecularProbability(m, fi);
+        value = c.specularReflectance * fi;
+      }
+      return probability > 0;
+    }
+    default:
+      return false;
+  }
+}
+
 namespace {
 
 // Albedo of the rough coat's specular lobe alone (white tint) at incidence cos(theta):

@@ -43,12 +43,14 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
   for (double w : weights) total += w;
   double running = 0;
   triangleProbability_.assign(mesh.triangleCount(), 0.0f);
+  emitterProbability_.assign(scene.emitters.size(), 0.0f);
   for (size_t i = 0; i < items_.size(); ++i) {
     running += weights[i];
     cdf_.push_back(float(running / total));
     float p = float(weights[i] / total);
     if (items_[i].kind == Kind::Triangle) triangleProbability_[items_[i].index] = p;
     if (items_[i].kind == Kind::Environment) environmentProbability_ = p;
+    if (items_[i].kind != Kind::Triangle) emitterProbability_[items_[i].index] = p;
   }
   if (!cdf_.empty()) cdf_.back() = 1.0f;
 }
@@ -69,6 +71,13 @@ float LightSampler::pdfTriangle(uint32_t tri, Vec3 ref, Vec3 p, Vec3 n) const {
   if (cosL <= 0) return 0.0f;
   return prob / area * dist2 / cosL;  // area measure -> solid angle
 }
+
+float LightSampler::pdfAreaTriangle(uint32_t tri) const {
+  float prob = triangleProbability_[tri];
+  return prob > 0 ? prob / (0.5f * length(scene_.mesh.faceNormal(tri))) : 0.0f;
+}
+
+float LightSampler::pickProbabilityOfEmitter(int emitter) const { return emitterProbability_[emitter]; }
 
 float LightSampler::pdfEnvironment() const { return environmentProbability_ * kUniformSpherePdf; }
 
@@ -92,7 +101,8 @@ bool LightSampler::sample(Vec3 ref, float uPick, float u1, float u2, LightSample
     float cosL = -dot(out.normal, out.direction);
     if (cosL <= 0 || dist2 == 0) return false;  // one-sided emission: we see its back
     out.radiance = scene_.emitters[m.emitter[item.index]].radiance;
-    out.pdf = prob / item.area * dist2 / cosL;
+    out.pdfLight = prob / item.area;
+    out.pdf = out.pdfLight * dist2 / cosL;
   } else if (item.kind == Kind::Point) {
     const Emitter& e = scene_.emitters[item.index];
     Vec3 d = e.position - ref;
@@ -103,6 +113,7 @@ bool LightSampler::sample(Vec3 ref, float uPick, float u1, float u2, LightSample
     out.direction = d / out.distance;
     out.radiance = e.radiance / (dist2 * prob);  // the pick probability folded in
     out.pdf = 0;
+    out.pdfLight = prob;
     out.delta = true;
   } else {
     out.direction = squareToUniformSphere(u1, u2);
@@ -110,6 +121,7 @@ bool LightSampler::sample(Vec3 ref, float uPick, float u1, float u2, LightSample
     out.position = sceneCenter_ + out.direction * (4 * sceneRadius_);
     out.radiance = scene_.emitters[item.index].radiance;
     out.pdf = prob * kUniformSpherePdf;
+    out.pdfLight = out.pdf;
     out.environment = true;
   }
   return true;

@@ -29,7 +29,26 @@ void initPaths(PathQueue& paths, PathSlotQueue& slots, const std::vector<uint32_
     paths.throughputR[i] = paths.throughputG[i] = paths.throughputB[i] = 1;
     paths.radianceR[i] = paths.radianceG[i] = paths.radianceB[i] = 0;
     paths.prevPdf[i] = 0;
+    paths.pLength[i] = 1;
+    paths.lastVertex[i] = -1;
     slots.path[i] = uint32_t(i);
+  }
+}
+
+// Seed recording: vertex i of the history is the eye of path i.
+void writeEyeVertices(VertexQueue& history, PathQueue& paths, Vec3 eye, IndexRange r) {
+  for (size_t i = r.begin; i < r.end; ++i) {
+    history.px[i] = eye.x;
+    history.py[i] = eye.y;
+    history.pz[i] = eye.z;
+    history.nsX[i] = history.nsY[i] = history.nsZ[i] = 0;
+    history.ngX[i] = history.ngY[i] = history.ngZ[i] = 0;
+    history.material[i] = -1;
+    history.u[i] = history.v[i] = 0;
+    history.kind[i] = kEyeVertex;
+    history.pdfForward[i] = 1;  // the camera ray: density of the film position (filter-sampled)
+    history.parent[i] = -1;
+    paths.lastVertex[i] = int32_t(i);
   }
 }
 }  // namespace
@@ -49,6 +68,7 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
   PathSlotQueue slots[2];
   RayQueue rays[2], shadowRays;
   HitQueue hits;
+  VertexQueue history;
   std::atomic<uint64_t> rayCount{0};
   uint64_t invalid = 0;
 
@@ -62,18 +82,26 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
     prepareRays(shadowRays, n);
     hits.resize(n);
     int cur = 0;
+    const bool recording = settings.seeds != nullptr;
+    if (recording) history.resize(n);
     forEachRange("generate", n, kGrain, [&](IndexRange r) {
       initPaths(paths, slots[cur], order, spp, first, r);
-      stageGenerateCameraRays(ctx, paths.pixel.data(), paths.sample.data(), rays[cur], r);
+      stageGenerateCameraRays(ctx, paths.pixel.data(), paths.sample.data(), rays[cur], r, paths.filmX.data(),
+                              paths.filmY.data());
+      if (recording) writeEyeVertices(history, paths, camera.position(), r);
     }, &stats.stages);
 
+    VertexHistory bounceHistory{recording ? &history : nullptr, n};
     for (size_t live = n, bounce = 0; live > 0; ++bounce) {
+      if (recording) history.resize(bounceHistory.base + live);
       RayCoherence coherence = bounce == 0 ? RayCoherence::Coherent : RayCoherence::Incoherent;
       rayCount += live;
       forEachRange("intersect", live, kGrain,
                    [&](IndexRange r) { tracer.intersect(rays[cur], hits, r, coherence); }, &stats.stages);
       forEachRange("shade", live, kGrain,
-                   [&](IndexRange r) { stageShadePath(ctx, paths, slots[cur], rays[cur], hits, shadowRays, r); },
+                   [&](IndexRange r) {
+                     stageShadePath(ctx, paths, slots[cur], rays[cur], hits, shadowRays, bounceHistory, r);
+                   },
                    &stats.stages);
       forEachRange("shadow", live, kGrain, [&](IndexRange r) {
         uint64_t traced = 0;
@@ -83,6 +111,12 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
         stageShadowResolve(shadowRays, slots[cur], paths, r);
       }, &stats.stages);
       auto start = std::chrono::steady_clock::now();
+      if (recording) {
+        stageRecordSeeds(ctx, paths, slots[cur], hits, shadowRays, bounceHistory, live, *settings.seeds);
+        stats.stages.add("record seeds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        start = std::chrono::steady_clock::now();
+      }
+      bounceHistory.base += live;
       live = stageCompact(slots[cur], rays[cur], slots[1 - cur], rays[1 - cur], live, kGrain);
       stats.stages.add("compact", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       cur = 1 - cur;

@@ -7,7 +7,7 @@ namespace erpt {
 uint64_t sampleKey(uint64_t seed, uint32_t pixel, uint32_t sample) { return streamKey(seed, pixel, sample); }
 
 void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixels, const uint32_t* samples, RayQueue& rays,
-                             IndexRange range) {
+                             IndexRange range, float* filmX, float* filmY) {
   const uint32_t spp = uint32_t(ctx.spp);
   for (size_t i = range.begin; i < range.end; ++i) {
     uint32_t pixel = pixels[i], s = samples[i];
@@ -19,6 +19,10 @@ void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixels, co
     float fx = float(pixel % uint32_t(ctx.width)) + 0.5f + ctx.filter.sampleOffset(std::min(ux, 0x1.fffffep-1f));
     float fy = float(pixel / uint32_t(ctx.width)) + 0.5f + ctx.filter.sampleOffset(std::min(uy, 0x1.fffffep-1f));
     Camera::Ray r = ctx.camera.generateRay(fx, fy);
+    if (filmX) {
+      filmX[i] = fx;
+      filmY[i] = fy;
+    }
     setRay(rays, i, r.origin, r.direction, r.tnear, r.tfar);
   }
 }

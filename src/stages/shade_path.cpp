@@ -16,15 +16,43 @@ void addRadiance(PathQueue& p, uint32_t id, Color c) {
   p.radianceB[id] += c.z;
 }
 
+void writeVertex(VertexQueue& q, size_t i, Vec3 p, Vec3 ns, Vec3 ng, int32_t material, float u, float v, uint8_t kind,
+                 int32_t parent) {
+  q.px[i] = p.x;
+  q.py[i] = p.y;
+  q.pz[i] = p.z;
+  q.nsX[i] = ns.x;
+  q.nsY[i] = ns.y;
+  q.nsZ[i] = ns.z;
+  q.ngX[i] = ng.x;
+  q.ngY[i] = ng.y;
+  q.ngZ[i] = ng.z;
+  q.material[i] = material;
+  q.u[i] = u;
+  q.v[i] = v;
+  q.kind[i] = kind;
+  q.pdfForward[i] = 0;
+  q.parent[i] = parent;
+}
+
+// Far point standing in for the environment along a direction (for seed vertices).
+Vec3 environmentPoint(Vec3 from, Vec3 dir) { return from + dir * 1e6f; }
+
 }  // namespace
 
 void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& slots, RayQueue& rays,
-                    const HitQueue& hits, RayQueue& shadowRays, IndexRange range) {
+                    const HitQueue& hits, RayQueue& shadowRays, VertexHistory history, IndexRange range) {
   const Emitter* env = ctx.scene.environment();
+  const bool recording = history.vertices != nullptr;
   for (size_t k = range.begin; k < range.end; ++k) {
     const uint32_t id = slots.path[k];
+    const size_t vertex = history.base + k;
     slots.alive[k] = 0;
     slots.neeR[k] = slots.neeG[k] = slots.neeB[k] = 0;
+    if (recording) {
+      slots.emitWeight[k] = slots.neeWeight[k] = 0;
+      slots.pLengthHere[k] = paths.pLength[id];
+    }
     disableRay(shadowRays, k);
     const uint32_t depth = paths.depth[id];  // segments so far, including the ray just traced
     const Color throughput = throughputOf(paths, id);
@@ -33,20 +61,43 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     const float prevPdf = paths.prevPdf[id];
 
     if (hits.geomID[k] == kNoHit) {
-      if (env) addRadiance(paths, id, throughput * env->radiance * emitterHitWeight(prevPdf, ctx.lights.pdfEnvironment()));
+      if (!env) continue;
+      const float w = emitterHitWeight(prevPdf, ctx.lights.pdfEnvironment());
+      addRadiance(paths, id, throughput * env->radiance * w);
+      if (recording) {
+        writeVertex(*history.vertices, vertex, environmentPoint(prev, dir), -dir, -dir, -1, 0, 0, kEnvironmentVertex,
+                    paths.lastVertex[id]);
+        slots.emitWeight[k] = w;
+        Color e = throughput * env->radiance;
+        slots.emitR[k] = e.x;
+        slots.emitG[k] = e.y;
+        slots.emitB[k] = e.z;
+      }
       continue;
     }
     const SurfacePoint sp = surfaceAt(ctx.scene.mesh, hits.primID[k], hits.u[k], hits.v[k]);
+    const Material& m = ctx.scene.materials[sp.material];
+    if (recording) {
+      writeVertex(*history.vertices, vertex, sp.position, sp.shading.n, sp.geometricNormal, sp.material, sp.u, sp.v,
+                  m.isPureSpecular() ? kSpecularVertex : kNonSpecularVertex, paths.lastVertex[id]);
+      paths.lastVertex[id] = int32_t(vertex);
+    }
     const Color le = ctx.lights.emitted(sp.triangle, -dir);
     if (!isBlack(le)) {
       float lightPdf = prevPdf > 0 ? ctx.lights.pdfTriangle(sp.triangle, prev, sp.position, sp.geometricNormal) : 0.0f;
-      addRadiance(paths, id, throughput * le * emitterHitWeight(prevPdf, lightPdf));
+      const float w = emitterHitWeight(prevPdf, lightPdf);
+      addRadiance(paths, id, throughput * le * w);
+      if (recording) {
+        slots.emitWeight[k] = w;
+        slots.emitR[k] = throughput.x * le.x;
+        slots.emitG[k] = throughput.y * le.y;
+        slots.emitB[k] = throughput.z * le.z;
+      }
     }
     // A path of maxDepth segments can grow no further (-1: unbounded).
     if (ctx.maxDepth >= 0 && depth >= uint32_t(ctx.maxDepth)) continue;
 
     const uint64_t key = sampleKey(ctx.seed, paths.pixel[id], paths.sample[id]);
-    const Material& m = ctx.scene.materials[sp.material];
     const SurfaceColors colors = ctx.scene.surfaceColors(sp.material, sp.u, sp.v);
     const Vec3 wi = sp.shading.toLocal(-dir);
 
@@ -58,6 +109,20 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
       slots.neeG[k] = c.y;
       slots.neeB[k] = c.z;
       setRay(shadowRays, k, lc.origin, lc.direction, 0.0f, lc.tfar);
+      if (recording) {
+        slots.neeWeight[k] = lc.misWeight;
+        slots.neeBsdfPdf[k] = lc.bsdfPdf;
+        slots.neeLightPdf[k] = lc.light.pdfLight;
+        slots.neeLightKind[k] = lc.light.environment ? kEnvironmentVertex : kLightVertex;
+        Vec3 lp = lc.light.environment ? environmentPoint(sp.position, lc.direction) : lc.light.position;
+        Vec3 ln = lc.light.environment ? -lc.direction : lc.light.normal;
+        slots.neeLightX[k] = lp.x;
+        slots.neeLightY[k] = lp.y;
+        slots.neeLightZ[k] = lp.z;
+        slots.neeLightNX[k] = ln.x;
+        slots.neeLightNY[k] = ln.y;
+        slots.neeLightNZ[k] = ln.z;
+      }
     }
 
     BsdfSample bs;
@@ -66,11 +131,16 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
         isBlack(bs.weight))
       continue;
     Color next = throughput * bs.weight;
+    if (recording) {
+      history.vertices->pdfForward[vertex] = bs.pdf;  // for a Dirac lobe: its probability p_s
+      history.vertices->kind[vertex] = bs.delta ? kSpecularVertex : kNonSpecularVertex;
+    }
     if (int(depth) >= ctx.rrDepth) {
       // Russian roulette: survive with probability q, reweight by 1/q (unbiased).
       float q = std::min(0.95f, maxComponent(next));
       if (!(uniformFloat(key, bounceDim(depth, kRoulette)) < q)) continue;
       next = next / q;
+      paths.pLength[id] *= q;
     }
     paths.throughputR[id] = next.x;
     paths.throughputG[id] = next.y;

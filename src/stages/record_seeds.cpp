@@ -1,0 +1,92 @@
+// Seed recording: turns this bounce's contributions into complete seed paths. Runs on one
+// thread in slot order, so the seed store's order is fixed; it only runs when ERPT (or a
+// test) asks for seeds.
+#include <algorithm>
+#include <vector>
+
+#include "erpt/stages.h"
+
+namespace erpt {
+
+namespace {
+
+// Appends the history chain ending at `last` (eye first) to the store; returns the index of
+// the first appended vertex.
+uint32_t copyChain(const VertexQueue& history, int32_t last, VertexQueue& out, std::vector<int32_t>& scratch) {
+  scratch.clear();
+  for (int32_t v = last; v >= 0; v = history.parent[v]) scratch.push_back(v);
+  std::reverse(scratch.begin(), scratch.end());
+  uint32_t begin = uint32_t(out.size());
+  out.resize(begin + scratch.size());
+  for (size_t j = 0; j < scratch.size(); ++j) {
+    out.copyRow(begin + j, history, size_t(scratch[j]));
+    out.parent[begin + j] = j == 0 ? -1 : int32_t(begin + j - 1);
+  }
+  return begin;
+}
+
+void appendSeed(SeedStore& store, const PathQueue& paths, uint32_t id, bool explicitLight, float weight, Color estimate,
+                float pLength, float pLight, uint32_t begin) {
+  size_t i = store.seeds.size();
+  store.seeds.resize(i + 1);
+  SeedQueue& s = store.seeds;
+  s.pixel[i] = paths.pixel[id];
+  s.filmX[i] = paths.filmX[id];
+  s.filmY[i] = paths.filmY[id];
+  s.explicitLight[i] = explicitLight;
+  s.misWeight[i] = weight;
+  s.estimateR[i] = estimate.x;
+  s.estimateG[i] = estimate.y;
+  s.estimateB[i] = estimate.z;
+  s.pLength[i] = pLength;
+  s.pLight[i] = pLight;
+  s.vertexBegin[i] = begin;
+  s.vertexCount[i] = uint32_t(store.vertices.size()) - begin;
+}
+
+}  // namespace
+
+void stageRecordSeeds(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots, const HitQueue& hits,
+                      const RayQueue& shadowRays, const VertexHistory& history, size_t live, SeedStore& store) {
+  std::vector<int32_t> scratch;
+  const VertexQueue& h = *history.vertices;
+  for (size_t k = 0; k < live; ++k) {
+    const uint32_t id = slots.path[k];
+    const int32_t vertex = int32_t(history.base + k);
+    if (slots.emitWeight[k] > 0) {
+      // A BSDF sample reached an emitter: the hit vertex is the path's light vertex.
+      uint32_t begin = copyChain(h, vertex, store.vertices, scratch);
+      size_t last = store.vertices.size() - 1;
+      bool environment = store.vertices.kind[last] == kEnvironmentVertex;
+      store.vertices.kind[last] = environment ? kEnvironmentVertex : kLightVertex;
+      store.vertices.pdfForward[last] = 0;
+      // What next-event estimation would have used for this light point.
+      float pLight = environment ? ctx.lights.pdfEnvironment() : ctx.lights.pdfAreaTriangle(hits.primID[k]);
+      Color e{slots.emitR[k], slots.emitG[k], slots.emitB[k]};
+      appendSeed(store, paths, id, false, slots.emitWeight[k], e, slots.pLengthHere[k], pLight, begin);
+    }
+    if (slots.neeWeight[k] > 0 && shadowRays.tfar[k] >= 0) {
+      uint32_t begin = copyChain(h, vertex, store.vertices, scratch);
+      store.vertices.pdfForward[store.vertices.size() - 1] = slots.neeBsdfPdf[k];
+      size_t l = store.vertices.size();
+      store.vertices.resize(l + 1);
+      VertexQueue& v = store.vertices;
+      v.px[l] = slots.neeLightX[k];
+      v.py[l] = slots.neeLightY[k];
+      v.pz[l] = slots.neeLightZ[k];
+      v.nsX[l] = v.ngX[l] = slots.neeLightNX[k];
+      v.nsY[l] = v.ngY[l] = slots.neeLightNY[k];
+      v.nsZ[l] = v.ngZ[l] = slots.neeLightNZ[k];
+      v.material[l] = -1;
+      v.u[l] = v.v[l] = 0;
+      v.kind[l] = slots.neeLightKind[k];
+      v.pdfForward[l] = 0;
+      v.parent[l] = int32_t(l - 1);
+      Color weighted{slots.neeR[k], slots.neeG[k], slots.neeB[k]};
+      appendSeed(store, paths, id, true, slots.neeWeight[k], weighted / slots.neeWeight[k], slots.pLengthHere[k],
+                 slots.neeLightPdf[k], begin);
+    }
+  }
+}
+
+}  // namespace erpt

@@ -1,0 +1,159 @@
+// The path tracer's seed store: the image is exactly the sum of the seeds' contributions,
+// and every recorded density and estimate can be recomputed from the stored vertices.
+#include <gtest/gtest.h>
+
+#include "erpt/bsdf.h"
+#include "erpt/light_sampler.h"
+#include "erpt/render.h"
+#include "erpt/scene_loader.h"
+#include "erpt/surface.h"
+#include "support/test_support.h"
+
+namespace erpt {
+namespace {
+
+struct SeededRender {
+  RgbImage image;
+  SeedStore seeds;
+};
+
+SeededRender renderWithSeeds(const Scene& scene, int size, int spp, int threads = 0) {
+  SeededRender out;
+  RenderSettings s;
+  s.integrator = "path";
+  s.width = s.height = size;
+  s.spp = spp;
+  s.seed = 3;
+  s.threads = threads;
+  s.filterSet = true;
+  s.filter = FilterKind::Box;
+  s.seeds = &out.seeds;
+  RenderStats stats;
+  out.image = render(scene, s, stats);
+  EXPECT_EQ(stats.invalidSamples, 0u);
+  return out;
+}
+
+Vec3 vertexPosition(const VertexQueue& v, size_t i) { return {v.px[i], v.py[i], v.pz[i]}; }
+
+// Where the ray from vertex i towards vertex j started: the path tracer pushes ray origins
+// off the surface (offsetOrigin), so directions are recomputed from that point, as traced.
+Vec3 rayOrigin(const VertexQueue& v, size_t i, size_t j) {
+  Vec3 x = vertexPosition(v, i);
+  if (v.kind[i] == kEyeVertex) return x;
+  return offsetOrigin(x, Vec3(v.ngX[i], v.ngY[i], v.ngZ[i]), vertexPosition(v, j) - x);
+}
+
+class SeedStoreTest : public ::testing::TestWithParam<const char*> {
+ protected:
+  Scene scene() const {
+    std::string which = GetParam();
+    return loadScene(which == "cornell" ? test::sharedScenesDir() + "/cornell-box/scene.xml"
+                                        : test::sourceDir() + "/scenes/default/scene.xml");
+  }
+};
+
+TEST_P(SeedStoreTest, ImageIsTheSumOfSeedContributions) {
+  Scene sc = scene();
+  const int size = 24, spp = 8;
+  SeededRender r = renderWithSeeds(sc, size, spp);
+  ASSERT_GT(r.seeds.size(), 1000u);
+  std::vector<double> sum(size_t(size) * size * 3, 0.0);
+  for (size_t i = 0; i < r.seeds.size(); ++i) {
+    Color c = r.seeds.contribution(i);
+    for (int ch = 0; ch < 3; ++ch) sum[3 * r.seeds.seeds.pixel[i] + ch] += c[ch];
+  }
+  for (size_t p = 0; p < size_t(size) * size; ++p)
+    for (int ch = 0; ch < 3; ++ch) {
+      double expected = r.image.pixels[p][ch], got = sum[3 * p + ch] / spp;
+      ASSERT_NEAR(got, expected, 1e-5 + 1e-4 * expected) << "pixel " << p << " channel " << ch;
+    }
+}
+
+TEST_P(SeedStoreTest, DensitiesAndEstimatesRecomputeFromVertices) {
+  Scene sc = scene();
+  const int size = 16;
+  SeededRender r = renderWithSeeds(sc, size, 32);
+  LightSampler lights(sc);
+  const VertexQueue& v = r.seeds.vertices;
+  const SeedQueue& s = r.seeds.seeds;
+  size_t checkedSpecular = 0, checkedExplicit = 0, checkedImplicit = 0;
+  for (size_t k = 0; k < r.seeds.size(); ++k) {
+    const size_t b = s.vertexBegin[k], n = s.vertexCount[k];
+    ASSERT_GE(n, 2u);
+    ASSERT_EQ(v.kind[b], kEyeVertex);
+    ASSERT_TRUE(v.kind[b + n - 1] == kLightVertex || v.kind[b + n - 1] == kEnvironmentVertex);
+    // The pixel is the one the film position lies in (box filter).
+    EXPECT_EQ(s.pixel[k], uint32_t(int(s.filmY[k]) * size + int(s.filmX[k])));
+    const bool explicitLight = s.explicitLight[k] != 0;
+    Color estimate(1.0f);
+    for (size_t i = 1; i + 1 < n; ++i) {
+      const size_t at = b + i;
+      Vec3 x = vertexPosition(v, at);
+      const bool toLight = explicitLight && i + 2 == n;  // next-event rays aim from x itself
+      Vec3 wi = normalize(rayOrigin(v, at - 1, at) - x);
+      Vec3 wo = normalize(vertexPosition(v, at + 1) - (toLight ? x : rayOrigin(v, at, at + 1)));
+      Frame frame(Vec3(v.nsX[at], v.nsY[at], v.nsZ[at]));
+      const Material& m = sc.materials[v.material[at]];
+      SurfaceColors colors = sc.surfaceColors(v.material[at], v.u[at], v.v[at]);
+      Vec3 wiL = frame.toLocal(wi), woL = frame.toLocal(wo);
+      if (v.kind[at] == kSpecularVertex) {
+        Color value;
+        float p;
+        ASSERT_TRUE(bsdfDeltaLobe(m, colors, wiL, woL, value, p)) << "seed " << k << " vertex " << i;
+        EXPECT_NEAR(p, v.pdfForward[at], 1e-4f * std::max(1.0f, p)) << "p_s, seed " << k << " vertex " << i;
+        estimate *= value / p;
+        ++checkedSpecular;
+        continue;
+      }
+      ASSERT_EQ(v.kind[at], kNonSpecularVertex);
+      Color f = bsdfEval(m, colors, wiL, woL);
+      float pd = bsdfPdf(m, colors, wiL, woL);
+      EXPECT_NEAR(pd, v.pdfForward[at], 2e-3f * pd + 1e-6f) << "p_d, seed " << k << " vertex " << i;
+      if (toLight) {
+        // Rule 4 territory: the last segment was sampled on the light, by area.
+        Vec3 l = vertexPosition(v, at + 1);
+        if (v.kind[at + 1] == kEnvironmentVertex) {
+          estimate *= f / s.pLight[k];
+        } else {
+          Vec3 nl{v.ngX[at + 1], v.ngY[at + 1], v.ngZ[at + 1]};
+          Vec3 d = l - x;
+          float dist2 = dot(d, d);
+          estimate *= f * (std::abs(dot(nl, wo)) / (dist2 * s.pLight[k]));
+        }
+      } else {
+        estimate *= f / pd;
+      }
+    }
+    // The scenes have one emitter each: its radiance.
+    Color le = sc.emitters[0].radiance;
+    estimate = estimate * le / s.pLength[k];
+    Color recorded{s.estimateR[k], s.estimateG[k], s.estimateB[k]};
+    for (int ch = 0; ch < 3; ++ch)
+      EXPECT_NEAR(estimate[ch], recorded[ch], 2e-3f * std::abs(recorded[ch]) + 1e-6f)
+          << "seed " << k << " channel " << ch << " (" << n << " vertices, explicit " << explicitLight << ")";
+    (explicitLight ? checkedExplicit : checkedImplicit)++;
+    if (HasFailure()) break;
+  }
+  EXPECT_GT(checkedExplicit, 100u);
+  EXPECT_GT(checkedImplicit, 100u);
+  if (std::string(GetParam()) == "default") {
+    EXPECT_GT(checkedSpecular, 100u);
+  }
+}
+
+TEST(SeedStore, SameSeedsForAnyThreadCount) {
+  Scene sc = loadScene(test::sourceDir() + "/scenes/default/scene.xml");
+  SeededRender a = renderWithSeeds(sc, 16, 2, 1), b = renderWithSeeds(sc, 16, 2, 2);
+  ASSERT_EQ(a.seeds.size(), b.seeds.size());
+  for (size_t k = 0; k < a.seeds.size(); ++k) {
+    ASSERT_EQ(a.seeds.seeds.pixel[k], b.seeds.seeds.pixel[k]);
+    ASSERT_EQ(a.seeds.seeds.estimateR[k], b.seeds.seeds.estimateR[k]);
+    ASSERT_EQ(a.seeds.seeds.vertexCount[k], b.seeds.seeds.vertexCount[k]);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, SeedStoreTest, ::testing::Values("cornell", "default"));
+
+}  // namespace
+}  // namespace erpt
