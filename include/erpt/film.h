@@ -19,6 +19,12 @@ class Film {
     sum_[3 * size_t(pixel) + 1] += c.y;
     sum_[3 * size_t(pixel) + 2] += c.z;
   }
+  // A NaN/Inf estimate is dropped, never accumulated; returns false then (callers count them).
+  bool addIfFinite(uint32_t pixel, Color c) {
+    if (!isFinite(c)) return false;
+    add(pixel, c);
+    return true;
+  }
   RgbImage resolve(double samplesPerPixel) const;
 
  private:

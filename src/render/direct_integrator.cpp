@@ -10,7 +10,7 @@
 #include "erpt/film.h"
 #include "erpt/stages.h"
 #include "erpt/tracer.h"
-#include "pixel_order.h"
+#include "render_setup.h"
 
 namespace erpt {
 
@@ -20,20 +20,17 @@ constexpr size_t kGrain = 256;
 }  // namespace
 
 RgbImage renderDirect(const Scene& scene, const RenderSettings& settings, RenderStats& stats) {
-  ThreadPool pool(settings.threads);
-  Tracer tracer(scene);
-  Camera camera(scene.camera, settings.width, settings.height);
-  PixelFilter filter(settings.filter);
-  LightSampler lights(scene);
-  StageContext ctx{scene, camera, filter, lights, settings.seed, settings.width, settings.spp, settings.maxDepth};
-  Film film(settings.width, settings.height);
-
-  const std::vector<uint32_t> order = tiledPixelOrder(settings.width, settings.height);
-  const size_t spp = size_t(settings.spp), total = order.size() * spp;
+  RenderSetup setup(scene, settings);
+  const Tracer& tracer = setup.tracer;
+  const StageContext& ctx = setup.ctx;
+  Film& film = setup.film;
+  const std::vector<uint32_t>& order = setup.order;
+  const size_t spp = size_t(settings.spp), total = setup.totalSamples;
   DirectSampleQueue samples;
   RayQueue cameraRays, shadowRays, bsdfRays;
   HitQueue cameraHits, bsdfHits;
-  std::atomic<uint64_t> rays{0}, invalid{0};
+  std::atomic<uint64_t> rays{0};
+  uint64_t invalid = 0;
 
   for (size_t batchStart = 0; batchStart < total; batchStart += kBatchSamples) {
     const size_t n = std::min(kBatchSamples, total - batchStart);
@@ -68,12 +65,7 @@ RgbImage renderDirect(const Scene& scene, const RenderSettings& settings, Render
                  &stats.stages);
     // Accumulate in slot order on one thread: film sums are then independent of threading.
     for (size_t j = 0; j < n; ++j) {
-      Color c{samples.radianceR[j], samples.radianceG[j], samples.radianceB[j]};
-      if (!isFinite(c)) {
-        ++invalid;
-        continue;
-      }
-      film.add(samples.pixel[j], c);
+      invalid += !film.addIfFinite(samples.pixel[j], Color(samples.radianceR[j], samples.radianceG[j], samples.radianceB[j]));
     }
     if (settings.progress) settings.progress(double(batchStart + n) / double(total));
   }

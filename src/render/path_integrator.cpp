@@ -12,7 +12,7 @@
 #include "erpt/stages.h"
 #include "erpt/tracer.h"
 #include "path_integrator.h"
-#include "pixel_order.h"
+#include "render_setup.h"
 
 namespace erpt {
 
@@ -54,16 +54,12 @@ void writeEyeVertices(VertexQueue& history, PathQueue& paths, Vec3 eye, IndexRan
 }  // namespace
 
 RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderStats& stats) {
-  ThreadPool pool(settings.threads);
-  Tracer tracer(scene);
-  Camera camera(scene.camera, settings.width, settings.height);
-  PixelFilter filter(settings.filter);
-  LightSampler lights(scene);
-  StageContext ctx{scene, camera, filter, lights, settings.seed, settings.width, settings.spp, settings.maxDepth};
-  Film film(settings.width, settings.height);
-
-  const std::vector<uint32_t> order = tiledPixelOrder(settings.width, settings.height);
-  const size_t spp = size_t(settings.spp), total = order.size() * spp;
+  RenderSetup setup(scene, settings);
+  const Tracer& tracer = setup.tracer;
+  const StageContext& ctx = setup.ctx;
+  Film& film = setup.film;
+  const std::vector<uint32_t>& order = setup.order;
+  const size_t spp = size_t(settings.spp), total = setup.totalSamples;
   PathQueue paths;
   PathSlotQueue slots[2];
   RayQueue rays[2], shadowRays;
@@ -88,7 +84,7 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
       initPaths(paths, slots[cur], order, spp, first, r);
       stageGenerateCameraRays(ctx, paths.pixel.data(), paths.sample.data(), rays[cur], r, paths.filmX.data(),
                               paths.filmY.data());
-      if (recording) writeEyeVertices(history, paths, camera.position(), r);
+      if (recording) writeEyeVertices(history, paths, setup.camera.position(), r);
     }, &stats.stages);
 
     VertexHistory bounceHistory{recording ? &history : nullptr, n};
@@ -123,12 +119,7 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
     }
 
     for (size_t i = 0; i < n; ++i) {
-      Color c{paths.radianceR[i], paths.radianceG[i], paths.radianceB[i]};
-      if (!isFinite(c)) {
-        ++invalid;  // a NaN/Inf estimate is dropped and counted, never accumulated
-        continue;
-      }
-      film.add(paths.pixel[i], c);
+      invalid += !film.addIfFinite(paths.pixel[i], Color(paths.radianceR[i], paths.radianceG[i], paths.radianceB[i]));
     }
     if (settings.progress) settings.progress(double(first + n) / double(total));
   }

@@ -1,0 +1,38 @@
+// What every integrator builds before its first sample: threads, the Embree scene, camera,
+// pixel filter, light sampler, stage context, film, and the tiled pixel order.
+#pragma once
+
+#include <vector>
+
+#include "erpt/film.h"
+#include "erpt/render.h"
+#include "erpt/stages.h"
+#include "erpt/tracer.h"
+#include "pixel_order.h"
+
+namespace erpt {
+
+struct RenderSetup {
+  ThreadPool pool;
+  Tracer tracer;
+  Camera camera;
+  PixelFilter filter;
+  LightSampler lights;
+  StageContext ctx;
+  Film film;
+  std::vector<uint32_t> order;  // pixels in 16x16 tiles
+  size_t totalSamples;          // order.size() * spp
+
+  RenderSetup(const Scene& scene, const RenderSettings& s)
+      : pool(s.threads),
+        tracer(scene),
+        camera(scene.camera, s.width, s.height),
+        filter(s.filter),
+        lights(scene),
+        ctx{scene, camera, filter, lights, s.seed, s.width, s.spp, s.maxDepth},
+        film(s.width, s.height),
+        order(tiledPixelOrder(s.width, s.height)),
+        totalSamples(order.size() * size_t(s.spp)) {}
+};
+
+}  // namespace erpt
