@@ -62,8 +62,9 @@ void stageRecordSeeds(const StageContext& ctx, const PathQueue& paths, const Pat
 // Adds the next-event contribution of every slot whose shadow ray was not occluded.
 void stageShadowResolve(const RayQueue& shadowRays, const PathSlotQueue& slots, PathQueue& paths, IndexRange range);
 
-// Stable compaction: keeps the slots with alive != 0 (and their rays), in order, moving them
-// to the front of `outSlots` / `outRays`. Returns the number kept.
+// Stable compaction: keeps the slots with alive != 0, in order, moving their path ids and
+// rays to the front of `outSlots` / `outRays` (the per-bounce scratch columns of a slot do
+// not move). Returns the number kept.
 size_t stageCompact(const PathSlotQueue& slots, const RayQueue& rays, PathSlotQueue& outSlots, RayQueue& outRays,
                     size_t count, size_t grain);
 

@@ -64,6 +64,18 @@ inline void setRay(RayQueue& q, size_t i, Vec3 org, Vec3 dir, float tnear, float
   q.tfar[i] = tfar;
 }
 
+// Ray `to` of `q` = ray `from` of `src` (origin, direction, interval).
+inline void copyRayGeometry(RayQueue& q, size_t to, const RayQueue& src, size_t from) {
+  q.orgX[to] = src.orgX[from];
+  q.orgY[to] = src.orgY[from];
+  q.orgZ[to] = src.orgZ[from];
+  q.dirX[to] = src.dirX[from];
+  q.dirY[to] = src.dirY[from];
+  q.dirZ[to] = src.dirZ[from];
+  q.tnear[to] = src.tnear[from];
+  q.tfar[to] = src.tfar[from];
+}
+
 // Marks ray i as inactive: Embree skips rays whose interval is empty.
 inline void disableRay(RayQueue& q, size_t i) {
   q.tnear[i] = 1.0f;

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include "erpt/stages.h"
+#include "erpt/tracer.h"
 
 namespace erpt {
 
@@ -20,8 +21,11 @@ size_t stageCompact(const PathSlotQueue& slots, const RayQueue& rays, PathSlotQu
     size_t out = offset[b];
     for (size_t k = b * grain; k < std::min(count, (b + 1) * grain); ++k) {
       if (!slots.alive[k]) continue;
-      outSlots.copyRow(out, slots, k);
-      outRays.copyRow(out, rays, k);
+      // Only the path id and the ray move: the other slot columns are per-bounce scratch
+      // that the next shade pass rewrites, and the ray's Embree flags never change.
+      outSlots.path[out] = slots.path[k];
+      outSlots.alive[out] = 1;
+      copyRayGeometry(outRays, out, rays, k);
       ++out;
     }
   });

@@ -22,7 +22,6 @@ TEST(StageCompact, KeepsExactlyTheLiveSlotsInOrder) {
   for (size_t k = 0; k < n; ++k) {
     slots.path[k] = uint32_t(5000 + k);
     slots.alive[k] = (k * 7919 % 13) < 5;  // an irregular pattern
-    slots.neeR[k] = float(k);
     setRay(rays, k, Vec3(float(k), 0, 0), Vec3(0, 0, 1), 0.0f, float(k));
     if (slots.alive[k]) expected.push_back(uint32_t(5000 + k));
   }
@@ -34,7 +33,6 @@ TEST(StageCompact, KeepsExactlyTheLiveSlotsInOrder) {
       size_t k = expected[j] - 5000;
       EXPECT_EQ(outRays.orgX[j], float(k));  // the ray moved with its slot
       EXPECT_EQ(outRays.tfar[j], float(k));
-      EXPECT_EQ(outSlots.neeR[j], float(k));
     }
   }
   EXPECT_EQ(stageCompact(slots, rays, outSlots, outRays, 0, 64), 0u);
