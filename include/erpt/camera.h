@@ -16,6 +16,9 @@ class Camera {
     float tnear, tfar;       // the clip planes along this ray
   };
   Ray generateRay(float filmX, float filmY) const;
+  // The same for n rays at once (SIMD over the film positions; origins are all position()).
+  void generateRays(const float* filmX, const float* filmY, size_t n, float* dirX, float* dirY, float* dirZ,
+                    float* tnear, float* tfar) const;
   // World point to film coordinates; false when behind the camera.
   bool project(Vec3 p, float& filmX, float& filmY) const;
   Vec3 position() const { return origin_; }
@@ -25,6 +28,7 @@ class Camera {
   Transform toWorld_, toCamera_;
   Vec3 origin_;
   float tanHalfX_, aspect_, nearClip_, farClip_;
+  float rotation_[9];  // toWorld_'s 3x3 part in single precision, row-major, for the SIMD path
   int width_, height_;
 };
 

@@ -29,7 +29,10 @@ Camera::Camera(const CameraSettings& s, int width, int height)
       nearClip_(s.nearClip),
       farClip_(s.farClip),
       width_(width),
-      height_(height) {}
+      height_(height) {
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) rotation_[3 * r + c] = float(toWorld_(r, c));
+}
 
 Camera::Ray Camera::generateRay(float filmX, float filmY) const {
   float u = 1.0f - 2.0f * filmX / float(width_);

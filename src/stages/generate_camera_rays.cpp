@@ -1,3 +1,6 @@
+#include <algorithm>
+#include <vector>
+
 #include "erpt/rng.h"
 #include "erpt/stages.h"
 #include "erpt/tracer.h"
@@ -9,6 +12,13 @@ uint64_t sampleKey(uint64_t seed, uint32_t pixel, uint32_t sample) { return stre
 void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixels, const uint32_t* samples, RayQueue& rays,
                              IndexRange range, float* filmX, float* filmY) {
   const uint32_t spp = uint32_t(ctx.spp);
+  // Film positions go to the caller's columns, or to scratch space when it does not keep them.
+  std::vector<float> scratch;
+  if (!filmX) {
+    scratch.resize(2 * range.size());
+    filmX = scratch.data() - range.begin;
+    filmY = scratch.data() + range.size() - range.begin;
+  }
   for (size_t i = range.begin; i < range.end; ++i) {
     uint32_t pixel = pixels[i], s = samples[i];
     uint64_t key = sampleKey(ctx.seed, pixel, s);
@@ -16,15 +26,16 @@ void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixels, co
     uint32_t pixelKey = uint32_t(streamKey(ctx.seed, pixel, ~0ull));
     float ux = (float(s) + uniformFloat(key, kDimFilmX)) / float(spp);
     float uy = (float(permuteIndex(s, spp, pixelKey)) + uniformFloat(key, kDimFilmY)) / float(spp);
-    float fx = float(pixel % uint32_t(ctx.width)) + 0.5f + ctx.filter.sampleOffset(std::min(ux, 0x1.fffffep-1f));
-    float fy = float(pixel / uint32_t(ctx.width)) + 0.5f + ctx.filter.sampleOffset(std::min(uy, 0x1.fffffep-1f));
-    Camera::Ray r = ctx.camera.generateRay(fx, fy);
-    if (filmX) {
-      filmX[i] = fx;
-      filmY[i] = fy;
-    }
-    setRay(rays, i, r.origin, r.direction, r.tnear, r.tfar);
+    filmX[i] = float(pixel % uint32_t(ctx.width)) + 0.5f + ctx.filter.sampleOffset(std::min(ux, 0x1.fffffep-1f));
+    filmY[i] = float(pixel / uint32_t(ctx.width)) + 0.5f + ctx.filter.sampleOffset(std::min(uy, 0x1.fffffep-1f));
   }
+  const size_t b = range.begin;
+  ctx.camera.generateRays(filmX + b, filmY + b, range.size(), rays.dirX.data() + b, rays.dirY.data() + b,
+                          rays.dirZ.data() + b, rays.tnear.data() + b, rays.tfar.data() + b);
+  const Vec3 eye = ctx.camera.position();
+  std::fill(rays.orgX.begin() + b, rays.orgX.begin() + range.end, eye.x);
+  std::fill(rays.orgY.begin() + b, rays.orgY.begin() + range.end, eye.y);
+  std::fill(rays.orgZ.begin() + b, rays.orgZ.begin() + range.end, eye.z);
 }
 
 }  // namespace erpt
