@@ -24,7 +24,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
   CLI::App* cmd = app.add_subcommand("render", "Render a Mitsuba XML scene to a linear EXR and a tone-mapped PNG");
   cmd->add_option("scene", a.scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required();
   cmd->add_option("-o,--output", a.output, "Output EXR path; the PNG is written beside it")->required();
-  cmd->add_option("--integrator", a.integrator, "Integrator: path (default: wavefront path tracer) or direct (direct lighting, for debugging)");
+  cmd->add_option("--integrator", a.integrator, "Integrator: path (wavefront path tracer) or direct (direct lighting, for debugging); default: the scene's, if it is one of these, else path");
   cmd->add_option("--spp", a.spp, "Samples per pixel (default: the scene's sample_count)")->check(CLI::Range(1, 1 << 24));
   cmd->add_option("--width", a.width, "Image width in pixels (default: the scene's film)")->check(CLI::Range(1, 65536));
   cmd->add_option("--height", a.height, "Image height in pixels (default: the scene's film)")->check(CLI::Range(1, 65536));
@@ -52,7 +52,8 @@ int runRender(const RenderArgs& a) {
   for (const std::string& w : scene.warnings.messages) std::cerr << w << "\n";
 
   RenderSettings s;
-  s.integrator = a.integrator;
+  const bool sceneIntegratorKnown = scene.integrator.type == "path" || scene.integrator.type == "direct";
+  s.integrator = !a.integrator.empty() ? a.integrator : sceneIntegratorKnown ? scene.integrator.type : "path";
   s.width = a.width;
   s.height = a.height;
   s.spp = a.spp;
@@ -63,7 +64,7 @@ int runRender(const RenderArgs& a) {
     s.filterSet = true;
     s.filter = a.filter == "box" ? FilterKind::Box : a.filter == "tent" ? FilterKind::Tent : FilterKind::Gaussian;
   }
-  if (scene.integrator.type != s.integrator && !a.quiet)
+  if (a.integrator.empty() && !sceneIntegratorKnown && !a.quiet)
     std::cerr << "note: the scene asks for integrator '" << scene.integrator.type << "'; rendering with '"
               << s.integrator << "'\n";
   Progress progress(!a.quiet);
