@@ -150,12 +150,12 @@ void BM_StageCompact(benchmark::State& state) {
   setRate(state, "paths/s", kPaths);
 }
 
-// The whole renderer on the Cornell box, 128x128 at 16 spp.
+// The whole renderer on the Cornell box, 256x256 at 16 spp (long enough to amortize set-up).
 void BM_PathTracer(benchmark::State& state) {
   static Scene scene = loadCornellBox();
   RenderSettings s;
   s.integrator = "path";
-  s.width = s.height = 128;
+  s.width = s.height = 256;
   s.spp = 16;
   s.threads = int(state.range(0));
   double rays = 0, samples = 0, seconds = 0;
