@@ -27,6 +27,16 @@ bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wi, float u1, fl
 // re-evaluate specular vertices of stored paths (ERPT seeds, density rule 2).
 bool bsdfDeltaLobe(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo, Color& value, float& probability);
 
+// The direction a Dirac lobe of `m` sends wi to: mirror reflection, or (transmission) the
+// refracted direction of a dielectric / the straight continuation of a thin dielectric.
+// False when the material has no such lobe or the refraction is total internal reflection.
+// Used by ERPT's mutations to follow a path's specular chain.
+bool specularDirection(const Material& m, Vec3 wi, bool reflection, Vec3& wo);
+// Factor by which bsdfDeltaLobe's value (radiance transport, wi towards the camera) exceeds
+// the same lobe's value for importance transport: (n_i / n_t)^2 for dielectric refraction,
+// 1 otherwise. ERPT's caustic perturbation measures paths from the light side.
+float deltaRadianceScale(const Material& m, Vec3 wi, Vec3 wo);
+
 // Computes the derived fields of a material (plastic's Fdr and coat sampling weight).
 void finalizeMaterial(Material& m);
 

@@ -22,7 +22,11 @@ class Camera {
   // World point to film coordinates; false when behind the camera.
   bool project(Vec3 p, float& filmX, float& filmY) const;
   Vec3 position() const { return origin_; }
+  // Cosine between a world direction leaving the camera and the optical axis.
+  float cosToAxis(Vec3 direction) const;
   float tanHalfFovX() const { return tanHalfX_; }
+  // Film pixels per unit length on the image plane at distance 1 (square pixels).
+  float pixelsPerPlaneUnit() const { return float(width_) / (2 * tanHalfX_); }
 
  private:
   Transform toWorld_, toCamera_;

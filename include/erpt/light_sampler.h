@@ -22,6 +22,7 @@ struct LightSample {
                      // point lights the pick probability, the environment its solid-angle pdf
   bool delta;        // point light: cannot be hit by BSDF sampling
   bool environment;
+  int emitter = -1;  // index into Scene::emitters
 };
 
 class LightSampler {

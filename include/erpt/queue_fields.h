@@ -85,6 +85,7 @@
   F(float, neeBsdfPdf, "BSDF pdf of the connection direction")                \
   F(float, neeLightPdf, "area-measure density of the light point (p_light * p_area)") \
   F(uint8_t, neeLightKind, "VertexKind of the light vertex")                 \
+  F(int32_t, neeLightEmitter, "index of the light in Scene::emitters")       \
   F(float, neeLightX, "light point x (environment: a point far along the direction)") \
   F(float, neeLightY, "y")                                                   \
   F(float, neeLightZ, "z")                                                   \
@@ -109,6 +110,7 @@
   F(float, u, "texture coordinate u")                                        \
   F(float, v, "texture coordinate v")                                        \
   F(uint8_t, kind, "VertexKind")                                             \
+  F(int32_t, emitter, "light and environment vertices: index into Scene::emitters (-1 otherwise)") \
   F(float, pdfForward, "p_d of the direction sampled from here to the next vertex (solid angle); for a specular vertex the probability p_s of the lobe taken") \
   F(int32_t, parent, "previous vertex of the same path, -1 at the eye")
 
@@ -127,3 +129,49 @@
   F(float, pLight, "explicit: area density of the light point (p_light * p_area); implicit: what NEE would have used") \
   F(uint32_t, vertexBegin, "first vertex in the seed store's vertex queue")  \
   F(uint32_t, vertexCount, "vertices, eye and light included")
+
+// One Markov chain of ERPT (equal deposition, paper figure 6). Its current path's vertices
+// live in a VertexQueue at rows [slot * kMaxChainVertices, + vertexCount).
+#define ERPT_CHAIN_FIELDS(F)                                                  \
+  F(uint64_t, key, "random stream of the chain (seed, chain number)")        \
+  F(uint32_t, step, "steps taken so far (the random dimension base)")        \
+  F(uint32_t, stepsLeft, "steps still to run; 0: the slot is free")          \
+  F(uint8_t, vertexCount, "vertices of the current path, eye and light included") \
+  F(uint64_t, signature, "vertex kinds of the current path, 4 bits each (erpt_path.h)") \
+  F(float, fLum, "lum(f) of the current path in the measure of mutation fKind (a cache)") \
+  F(uint8_t, fKind, "MutationKind fLum belongs to; None: not known") \
+  F(float, filmX, "film position of the current path, x in pixels")          \
+  F(float, filmY, "y")                                                       \
+  F(float, colorR, "rgb(f) / lum(f) of the current path, red")               \
+  F(float, colorG, "green")                                                  \
+  F(float, colorB, "blue")
+
+// The proposal of one chain for the current step (same slot as the chain). Regenerated
+// vertices are written to the proposal's VertexQueue rows of that slot; the others are the
+// chain's.
+#define ERPT_PROPOSAL_FIELDS(F)                                               \
+  F(uint8_t, mutation, "MutationKind chosen for this step")                  \
+  F(uint8_t, state, "ProposalState: walking, connecting, complete or rejected") \
+  F(uint8_t, reason, "RejectReason when rejected")                           \
+  F(int8_t, cursor, "index of the vertex the ray in flight will produce")    \
+  F(int8_t, connectTo, "fixed vertex the last regenerated one connects to (0: the eye), -1: none") \
+  F(float, filmX, "film position of the proposed path, x")                   \
+  F(float, filmY, "y")                                                       \
+  F(float, acceptance, "q(y -> z); 0 when rejected")                        \
+  F(float, colorR, "rgb(f) / lum(f) of the proposed path, red")             \
+  F(float, colorG, "green")                                                  \
+  F(float, colorB, "blue")
+
+// What one chain step deposits (paper's rule: one record; expected values: two). Applied to
+// the film in slot order, so the image does not depend on the thread count.
+#define ERPT_DEPOSIT_FIELDS(F)                                                \
+  F(float, x0, "film position of the first deposit, x")                      \
+  F(float, y0, "y")                                                          \
+  F(float, r0, "energy deposited there, red")                                \
+  F(float, g0, "green")                                                      \
+  F(float, b0, "blue")                                                       \
+  F(float, x1, "second deposit (expected-value rule), x")                   \
+  F(float, y1, "y")                                                          \
+  F(float, r1, "energy, red (0: none)")                                      \
+  F(float, g1, "green")                                                      \
+  F(float, b1, "blue")

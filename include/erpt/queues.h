@@ -13,6 +13,9 @@ ERPT_SOA_STRUCT(PathQueue, ERPT_PATH_FIELDS)
 ERPT_SOA_STRUCT(PathSlotQueue, ERPT_PATH_SLOT_FIELDS)
 ERPT_SOA_STRUCT(VertexQueue, ERPT_VERTEX_FIELDS)
 ERPT_SOA_STRUCT(SeedQueue, ERPT_SEED_FIELDS)
+ERPT_SOA_STRUCT(ChainQueue, ERPT_CHAIN_FIELDS)
+ERPT_SOA_STRUCT(ProposalQueue, ERPT_PROPOSAL_FIELDS)
+ERPT_SOA_STRUCT(DepositQueue, ERPT_DEPOSIT_FIELDS)
 
 enum VertexKind : uint8_t { kEyeVertex = 0, kNonSpecularVertex, kSpecularVertex, kLightVertex, kEnvironmentVertex };
 

@@ -5,6 +5,7 @@
 #include <functional>
 #include <string>
 
+#include "erpt/erpt_settings.h"
 #include "erpt/image_io.h"
 #include "erpt/parallel.h"
 #include "erpt/scene.h"
@@ -23,6 +24,10 @@ struct RenderSettings {
   FilterKind filter = FilterKind::Box;
   std::function<void(double fraction)> progress;  // called from the rendering thread
   SeedStore* seeds = nullptr;  // path tracer: when set, every contribution is recorded as a seed
+  // Path tracer with `seeds` set: called after every batch with that batch's seeds, which are
+  // then cleared (streaming, so memory stays bounded). Unset: the store keeps all seeds.
+  std::function<void(SeedStore&)> seedSink;
+  ErptSettings erpt;
 };
 
 struct RenderStats {
@@ -31,6 +36,7 @@ struct RenderStats {
   uint64_t rays = 0;
   uint64_t invalidSamples = 0;  // NaN/Inf estimates, dropped and counted
   StageTimes stages;
+  ErptStats erpt;
 };
 
 // Settings with the scene's values filled in where the caller left them open.

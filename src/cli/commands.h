@@ -2,6 +2,9 @@
 
 #include <map>
 #include <string>
+
+#include "erpt/erpt_settings.h"
+#include "erpt/render.h"
 #include <vector>
 
 namespace CLI {
@@ -16,6 +19,8 @@ struct RenderArgs {
   unsigned long long seed = 0;
   std::vector<std::string> defines;
   bool quiet = false;
+  ErptSettings erpt;
+  std::string strategy = "paper", deposit = "paper";
 };
 
 struct InfoArgs {
@@ -23,10 +28,18 @@ struct InfoArgs {
   std::vector<std::string> defines;
 };
 
+struct DiffArgs {
+  std::string image, reference;
+};
+
+void addDiffCommand(CLI::App& app, DiffArgs& args);
+int runDiff(const DiffArgs& args);
 void addRenderCommand(CLI::App& app, RenderArgs& args);
 void addInfoCommand(CLI::App& app, InfoArgs& args);
 int runRender(const RenderArgs& args);
 int runInfo(const InfoArgs& args);
+// The ERPT part of the end-of-render summary (stderr).
+void printErptSummary(const RenderStats& stats);
 
 // "-D name=value" strings to a map; throws UsageError on a malformed one.
 std::map<std::string, std::string> parseDefines(const std::vector<std::string>& defines);

@@ -1,4 +1,4 @@
-// The `erpt` command line: `erpt render` and `erpt info`.
+// The `erpt` command line: `erpt render`, `erpt info` and `erpt diff`.
 #include <unistd.h>
 
 #include <csignal>
@@ -30,6 +30,8 @@ int main(int argc, char** argv) {
   erpt::cli::addRenderCommand(app, renderArgs);
   erpt::cli::InfoArgs infoArgs;
   erpt::cli::addInfoCommand(app, infoArgs);
+  erpt::cli::DiffArgs diffArgs;
+  erpt::cli::addDiffCommand(app, diffArgs);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -37,6 +39,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("render")) return erpt::cli::runRender(renderArgs);
+    if (app.got_subcommand("diff")) return erpt::cli::runDiff(diffArgs);
     return erpt::cli::runInfo(infoArgs);
   } catch (const erpt::InputError& e) {
     std::cerr << e.what() << "\n";

@@ -24,7 +24,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
   CLI::App* cmd = app.add_subcommand("render", "Render a Mitsuba XML scene to a linear EXR and a tone-mapped PNG");
   cmd->add_option("scene", a.scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required();
   cmd->add_option("-o,--output", a.output, "Output EXR path; the PNG is written beside it")->required();
-  cmd->add_option("--integrator", a.integrator, "Integrator: path (wavefront path tracer) or direct (direct lighting, for debugging); default: the scene's, if it is one of these, else path");
+  cmd->add_option("--integrator", a.integrator, "Integrator: path (wavefront path tracer), erpt (energy redistribution path tracing) or direct (direct lighting, for debugging); default: the scene's, if it is one of these, else path");
   cmd->add_option("--spp", a.spp, "Samples per pixel (default: the scene's sample_count)")->check(CLI::Range(1, 1 << 24));
   cmd->add_option("--width", a.width, "Image width in pixels (default: the scene's film)")->check(CLI::Range(1, 65536));
   cmd->add_option("--height", a.height, "Image height in pixels (default: the scene's film)")->check(CLI::Range(1, 65536));
@@ -36,6 +36,21 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
       ->check(CLI::IsMember({"box", "tent", "gaussian"}));
   cmd->add_option("-D,--define", a.defines, "Override a scene <default>: -D name=value (repeatable)");
   cmd->add_flag("-q,--quiet", a.quiet, "No progress output");
+  ErptSettings& e = a.erpt;
+  cmd->add_option("--mutations-per-pixel", e.mutationsPerPixel, "ERPT: mutations per pixel M (sets e_d = spp * e_ave / M)")
+      ->check(CLI::Range(1, 1 << 24));
+  cmd->add_option("--chain-length", e.chainLength, "ERPT: steps m of every chain (paper: 100-1000)")
+      ->check(CLI::Range(1, 1 << 24));
+  cmd->add_option("--lens-radius", e.lensRadius, "ERPT: half-side in pixels of the square lens perturbations move in (4.5 = the paper's 9x9)")
+      ->check(CLI::Range(0.01, 10000.0));
+  cmd->add_option("--mutation-strategy", a.strategy, "ERPT: paper (caustic for L...SDE paths, lens otherwise), mixed (a coin when both apply), lens or caustic (one kind only)")
+      ->check(CLI::IsMember({"paper", "mixed", "lens", "caustic"}));
+  cmd->add_option("--pilot-spp", e.pilotSpp, "ERPT: samples per pixel of the pilot pass estimating e_ave")
+      ->check(CLI::Range(1, 1 << 16));
+  cmd->add_option("--deposit", a.deposit, "ERPT: paper (all of a step's energy at the chain's path) or expected ((1-q) at y, q at z)")
+      ->check(CLI::IsMember({"paper", "expected"}));
+  cmd->add_option("--direct-samples", e.directSamples, "ERPT: one-bounce paths by a direct-lighting pass with N samples per pixel; -1: ERPT renders them too")
+      ->check(CLI::Range(-1, 1 << 16));
 }
 
 int runRender(const RenderArgs& a) {
@@ -52,7 +67,8 @@ int runRender(const RenderArgs& a) {
   for (const std::string& w : scene.warnings.messages) std::cerr << w << "\n";
 
   RenderSettings s;
-  const bool sceneIntegratorKnown = scene.integrator.type == "path" || scene.integrator.type == "direct";
+  const bool sceneIntegratorKnown =
+      scene.integrator.type == "path" || scene.integrator.type == "direct" || scene.integrator.type == "erpt";
   s.integrator = !a.integrator.empty() ? a.integrator : sceneIntegratorKnown ? scene.integrator.type : "path";
   s.width = a.width;
   s.height = a.height;
@@ -60,6 +76,12 @@ int runRender(const RenderArgs& a) {
   s.maxDepth = a.maxDepth;
   s.seed = a.seed;
   s.threads = a.threads;
+  s.erpt = a.erpt;
+  s.erpt.strategy = a.strategy == "mixed"  ? MutationStrategy::Mixed
+                    : a.strategy == "lens" ? MutationStrategy::LensOnly
+                    : a.strategy == "caustic" ? MutationStrategy::CausticOnly
+                                              : MutationStrategy::Paper;
+  s.erpt.expectedDeposit = a.deposit == "expected";
   if (!a.filter.empty()) {
     s.filterSet = true;
     s.filter = a.filter == "box" ? FilterKind::Box : a.filter == "tent" ? FilterKind::Tent : FilterKind::Gaussian;
@@ -81,6 +103,7 @@ int runRender(const RenderArgs& a) {
                s.integrator.c_str(), r.width, r.height, r.spp, (unsigned long long)stats.samples, stats.seconds,
                stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0,
                (unsigned long long)stats.invalidSamples, out.string().c_str(), png.string().c_str());
+  if (s.integrator == "erpt") printErptSummary(stats);
   return 0;
 }
 

@@ -104,6 +104,9 @@ float pdfFront(const Material& m, Vec3 wi, Vec3 wo) {
   }
 }
 
+// Tangential components scale by n_i / n_t on refraction.
+float refractionScale(const Material& m, Vec3 wi) { return wi.z > 0 ? 1.0f / m.relativeIOR() : m.relativeIOR(); }
+
 bool sampleDielectric(const Material& m, const SurfaceColors& c, Vec3 wi, float u, BsdfSample& s) {
   float eta = m.relativeIOR(), cosT;
   float f = fresnelDielectric(wi.z, eta, &cosT);
@@ -114,7 +117,7 @@ bool sampleDielectric(const Material& m, const SurfaceColors& c, Vec3 wi, float 
     s.pdf = f;
     return true;
   }
-  float scale = wi.z > 0 ? 1.0f / eta : eta;  // tangential part scales by n_i / n_t
+  float scale = refractionScale(m, wi);
   s.wo = {-wi.x * scale, -wi.y * scale, cosT};
   // Radiance is compressed by (n_t / n_i)^2 on entering a denser medium.
   s.weight = c.specularTransmittance * (scale * scale);
@@ -240,6 +243,30 @@ bool bsdfDeltaLobe(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo, 
     default:
       return false;
   }
+}
+
+bool specularDirection(const Material& m, Vec3 wi, bool reflection, Vec3& wo) {
+  if (reflection) {
+    if (!m.hasSpecular()) return false;
+    wo = mirror(wi);
+    return true;
+  }
+  if (m.kind == BsdfKind::ThinDielectric) {
+    wo = -wi;
+    return true;
+  }
+  if (m.kind != BsdfKind::Dielectric) return false;
+  float cosT;
+  if (fresnelDielectric(wi.z, m.relativeIOR(), &cosT) >= 1) return false;
+  float scale = refractionScale(m, wi);
+  wo = normalize(Vec3{-wi.x * scale, -wi.y * scale, cosT});
+  return true;
+}
+
+float deltaRadianceScale(const Material& m, Vec3 wi, Vec3 wo) {
+  if (m.kind != BsdfKind::Dielectric || wi.z * wo.z > 0) return 1.0f;
+  float scale = refractionScale(m, wi);
+  return scale * scale;
 }
 
 namespace {

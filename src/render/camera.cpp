@@ -55,4 +55,8 @@ bool Camera::project(Vec3 p, float& filmX, float& filmY) const {
   return true;
 }
 
+float Camera::cosToAxis(Vec3 direction) const {
+  Vec3 local = normalize(toCamera_.vector(direction));
+  return local.z;
+}
 }  // namespace erpt

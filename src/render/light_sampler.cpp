@@ -100,11 +100,13 @@ bool LightSampler::sample(Vec3 ref, float uPick, float u1, float u2, LightSample
     out.direction = d / out.distance;
     float cosL = -dot(out.normal, out.direction);
     if (cosL <= 0 || dist2 == 0) return false;  // one-sided emission: we see its back
-    out.radiance = scene_.emitters[m.emitter[item.index]].radiance;
+    out.emitter = m.emitter[item.index];
+    out.radiance = scene_.emitters[out.emitter].radiance;
     out.pdfLight = prob / item.area;
     out.pdf = out.pdfLight * dist2 / cosL;
   } else if (item.kind == Kind::Point) {
     const Emitter& e = scene_.emitters[item.index];
+    out.emitter = int(item.index);
     Vec3 d = e.position - ref;
     float dist2 = dot(d, d);
     if (dist2 == 0) return false;
@@ -119,6 +121,7 @@ bool LightSampler::sample(Vec3 ref, float uPick, float u1, float u2, LightSample
     out.direction = squareToUniformSphere(u1, u2);
     out.distance = std::numeric_limits<float>::infinity();
     out.position = sceneCenter_ + out.direction * (4 * sceneRadius_);
+    out.emitter = int(item.index);
     out.radiance = scene_.emitters[item.index].radiance;
     out.pdf = prob * kUniformSpherePdf;
     out.pdfLight = out.pdf;

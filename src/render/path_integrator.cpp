@@ -46,6 +46,7 @@ void writeEyeVertices(VertexQueue& history, PathQueue& paths, Vec3 eye, IndexRan
     history.material[i] = -1;
     history.u[i] = history.v[i] = 0;
     history.kind[i] = kEyeVertex;
+    history.emitter[i] = -1;
     history.pdfForward[i] = 1;  // the camera ray: density of the film position (filter-sampled)
     history.parent[i] = -1;
     paths.lastVertex[i] = int32_t(i);
@@ -120,6 +121,10 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
 
     for (size_t i = 0; i < n; ++i) {
       invalid += !film.addIfFinite(paths.pixel[i], Color(paths.radianceR[i], paths.radianceG[i], paths.radianceB[i]));
+    }
+    if (recording && settings.seedSink) {
+      settings.seedSink(*settings.seeds);
+      settings.seeds->clear();
     }
     if (settings.progress) settings.progress(double(first + n) / double(total));
   }

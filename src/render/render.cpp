@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "direct_integrator.h"
+#include "erpt_integrator.h"
 #include "path_integrator.h"
 
 namespace erpt {
@@ -16,7 +17,7 @@ RenderSettings resolveSettings(const Scene& scene, RenderSettings s) {
   return s;
 }
 
-const char* integratorNames() { return "path, direct"; }
+const char* integratorNames() { return "path, direct, erpt"; }
 
 RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
   RenderSettings s = resolveSettings(scene, requested);
@@ -24,6 +25,8 @@ RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats
   RgbImage image;
   if (s.integrator == "path")
     image = renderPath(scene, s, stats);
+  else if (s.integrator == "erpt")
+    image = renderErpt(scene, s, stats);
   else if (s.integrator == "direct")
     image = renderDirect(scene, s, stats);
   else

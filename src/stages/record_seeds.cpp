@@ -80,6 +80,7 @@ void stageRecordSeeds(const StageContext& ctx, const PathQueue& paths, const Pat
       v.material[l] = -1;
       v.u[l] = v.v[l] = 0;
       v.kind[l] = slots.neeLightKind[k];
+      v.emitter[l] = slots.neeLightEmitter[k];
       v.pdfForward[l] = 0;
       v.parent[l] = int32_t(l - 1);
       Color weighted{slots.neeR[k], slots.neeG[k], slots.neeB[k]};

@@ -17,7 +17,7 @@ void addRadiance(PathQueue& p, uint32_t id, Color c) {
 }
 
 void writeVertex(VertexQueue& q, size_t i, Vec3 p, Vec3 ns, Vec3 ng, int32_t material, float u, float v, uint8_t kind,
-                 int32_t parent) {
+                 int32_t parent, int32_t emitter) {
   q.px[i] = p.x;
   q.py[i] = p.y;
   q.pz[i] = p.z;
@@ -31,6 +31,7 @@ void writeVertex(VertexQueue& q, size_t i, Vec3 p, Vec3 ns, Vec3 ng, int32_t mat
   q.u[i] = u;
   q.v[i] = v;
   q.kind[i] = kind;
+  q.emitter[i] = emitter;
   q.pdfForward[i] = 0;
   q.parent[i] = parent;
 }
@@ -66,7 +67,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
       addRadiance(paths, id, throughput * env->radiance * w);
       if (recording) {
         writeVertex(*history.vertices, vertex, environmentPoint(prev, dir), -dir, -dir, -1, 0, 0, kEnvironmentVertex,
-                    paths.lastVertex[id]);
+                    paths.lastVertex[id], int32_t(env - ctx.scene.emitters.data()));
         slots.emitWeight[k] = w;
         Color e = throughput * env->radiance;
         slots.emitR[k] = e.x;
@@ -79,7 +80,8 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     const Material& m = ctx.scene.materials[sp.material];
     if (recording) {
       writeVertex(*history.vertices, vertex, sp.position, sp.shading.n, sp.geometricNormal, sp.material, sp.u, sp.v,
-                  m.isPureSpecular() ? kSpecularVertex : kNonSpecularVertex, paths.lastVertex[id]);
+                  m.isPureSpecular() ? kSpecularVertex : kNonSpecularVertex, paths.lastVertex[id],
+                  ctx.scene.mesh.emitter[sp.triangle]);
       paths.lastVertex[id] = int32_t(vertex);
     }
     const Color le = ctx.lights.emitted(sp.triangle, -dir);
@@ -114,6 +116,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
         slots.neeBsdfPdf[k] = lc.bsdfPdf;
         slots.neeLightPdf[k] = lc.light.pdfLight;
         slots.neeLightKind[k] = lc.light.environment ? kEnvironmentVertex : kLightVertex;
+        slots.neeLightEmitter[k] = lc.light.emitter;
         Vec3 lp = lc.light.environment ? environmentPoint(sp.position, lc.direction) : lc.light.position;
         Vec3 ln = lc.light.environment ? -lc.direction : lc.light.normal;
         slots.neeLightX[k] = lp.x;

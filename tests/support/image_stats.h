@@ -1,12 +1,12 @@
-// Image comparisons used by the statistical tests.
+// Image comparisons used by the statistical tests (the library's metrics, under short names).
 #pragma once
 
-#include "erpt/image_io.h"
+#include "erpt/image_metrics.h"
 
 namespace erpt::test {
 
-Color meanOf(const RgbImage& img);
-// Mean over pixels and channels of (x - r)^2 / (r^2 + 0.01).
+using erpt::meanOf;
+// Mean over pixels and channels of (x - r)^2 / (r^2 + 0.01); sizes must agree.
 double relativeMse(const RgbImage& img, const RgbImage& ref);
 
 }  // namespace erpt::test

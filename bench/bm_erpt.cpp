@@ -1,0 +1,229 @@
+// ERPT: each chain-step stage alone on a full chain queue of the Cornell box, and the whole
+// chain loop, at 1 and 2 threads. Counters: mutations/s, rays/s; the loop also reports the
+// share of its time spent inside Embree (intersect and occlusion stages).
+#include <benchmark/benchmark.h>
+
+#include "bench_support.h"
+#include "erpt/erpt_chains.h"
+#include "erpt/render.h"
+#include "erpt/rng.h"
+
+namespace erpt::bench {
+namespace {
+
+constexpr int kSize = 128;
+constexpr size_t kSlots = 1 << 13;
+constexpr size_t kGrain = 256;
+
+// Seeds of a 4 spp path-traced Cornell box and a queue of chains started from them, frozen
+// before each stage.
+struct ErptFixture {
+  Scene scene = loadCornellBox();
+  Tracer tracer{scene};
+  Camera camera{scene.camera, kSize, kSize};
+  PixelFilter filter{FilterKind::Box};
+  LightSampler lights{scene};
+  FilmDensity density{filter, kSize, kSize};
+  ErptStepContext ctx{MeasureContext{scene, lights, camera, density}};
+  SeedStore seeds;
+  ChainQueue chains;
+  ProposalQueue proposals;
+  VertexQueue chainVertices, proposalVertices;
+  RayQueue eyeRays, rays, shadowRays, tracedShadowRays;
+  HitQueue hits;
+  ProposalQueue walked;
+  DepositQueue deposits;
+  double energy = 0;  // sum of seed luminances
+
+  ErptFixture() {
+    RenderSettings s;
+    s.width = s.height = kSize;
+    s.spp = 4;
+    s.seed = 5;
+    s.filterSet = true;
+    s.seeds = &seeds;
+    RenderStats stats;
+    render(scene, s, stats);
+    for (size_t i = 0; i < seeds.size(); ++i) energy += luminance(seeds.contribution(i));
+    chains.resize(kSlots);
+    proposals.resize(kSlots);
+    chainVertices.resize(kSlots * kMaxChainVertices);
+    proposalVertices.resize(kSlots * kMaxChainVertices);
+    prepareRays(rays, kSlots);
+    prepareRays(shadowRays, kSlots);
+    hits.resize(kSlots);
+    deposits.resize(kSlots);
+    for (size_t slot = 0, i = 0; slot < kSlots; ++i)
+      if (seeds.seeds.vertexCount[i] <= uint32_t(kMaxChainVertices) && luminance(seeds.contribution(i)) > 0)
+        loadChainFromSeed(chains, chainVertices, slot++, seeds, i, streamKey(1, i, 0), 1 << 30);
+    ctx.depositEnergy = 0.01f;
+    const IndexRange all{0, kSlots};
+    stageErptMutate(ctx, chains, chainVertices, proposals, rays, all);
+    for (size_t i = 0; i < kSlots; ++i) disableRay(shadowRays, i);
+    eyeRays = rays;
+    tracer.intersect(rays, hits, all, RayCoherence::Incoherent);
+    stageErptWalk(ctx, chains, chainVertices, proposals, proposalVertices, rays, hits, shadowRays, all);
+    walked = proposals;
+    tracedShadowRays = shadowRays;
+    tracer.occluded(tracedShadowRays, all);
+    stageErptResolveConnections(tracedShadowRays, walked, all);
+  }
+};
+
+ErptFixture& fixture() {
+  static ErptFixture f;
+  return f;
+}
+
+void setRate(benchmark::State& state, const char* name, double perIteration) {
+  state.counters[name] = benchmark::Counter(perIteration * double(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+size_t enabledRays(const RayQueue& r) {
+  size_t n = 0;
+  for (size_t i = 0; i < r.size(); ++i) n += r.tnear[i] <= r.tfar[i];
+  return n;
+}
+
+void BM_ErptMutate(benchmark::State& state) {
+  ErptFixture& f = fixture();
+  ThreadPool pool(int(state.range(0)));
+  ProposalQueue proposals = f.proposals;
+  RayQueue rays = f.rays;
+  for (auto _ : state)
+    forEachRange("mutate", kSlots, kGrain, [&](IndexRange r) {
+      stageErptMutate(f.ctx, f.chains, f.chainVertices, proposals, rays, r);
+    });
+  setRate(state, "mutations/s", kSlots);
+}
+
+void BM_ErptIntersect(benchmark::State& state) {
+  ErptFixture& f = fixture();
+  ThreadPool pool(int(state.range(0)));
+  RayQueue rays = f.eyeRays;
+  HitQueue hits = f.hits;
+  const size_t n = enabledRays(f.eyeRays);
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::copy(f.eyeRays.tfar.begin(), f.eyeRays.tfar.end(), rays.tfar.begin());
+    state.ResumeTiming();
+    forEachRange("intersect", kSlots, kGrain,
+                 [&](IndexRange r) { f.tracer.intersect(rays, hits, r, RayCoherence::Incoherent); });
+  }
+  setRate(state, "rays/s", double(n));
+}
+
+void BM_ErptWalk(benchmark::State& state) {
+  ErptFixture& f = fixture();
+  ThreadPool pool(int(state.range(0)));
+  ProposalQueue proposals = f.proposals;
+  RayQueue rays = f.eyeRays, shadow = f.shadowRays;
+  VertexQueue vertices = f.proposalVertices;
+  HitQueue hits = f.hits;
+  {
+    const IndexRange all{0, kSlots};
+    f.tracer.intersect(rays, hits, all, RayCoherence::Incoherent);
+  }
+  const RayQueue traced = rays;
+  for (auto _ : state) {
+    state.PauseTiming();
+    proposals = f.proposals;
+    rays = traced;
+    state.ResumeTiming();
+    forEachRange("walk", kSlots, kGrain, [&](IndexRange r) {
+      stageErptWalk(f.ctx, f.chains, f.chainVertices, proposals, vertices, rays, hits, shadow, r);
+    });
+  }
+  setRate(state, "mutations/s", kSlots);
+}
+
+void BM_ErptConnect(benchmark::State& state) {
+  ErptFixture& f = fixture();
+  ThreadPool pool(int(state.range(0)));
+  RayQueue shadow = f.shadowRays;
+  ProposalQueue proposals = f.walked;
+  const size_t n = enabledRays(f.shadowRays);
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::copy(f.shadowRays.tfar.begin(), f.shadowRays.tfar.end(), shadow.tfar.begin());
+    state.ResumeTiming();
+    forEachRange("connect", kSlots, kGrain, [&](IndexRange r) {
+      f.tracer.occluded(shadow, r);
+      stageErptResolveConnections(shadow, proposals, r);
+    });
+  }
+  setRate(state, "rays/s", double(n));
+}
+
+void BM_ErptAccept(benchmark::State& state) {
+  ErptFixture& f = fixture();
+  ThreadPool pool(int(state.range(0)));
+  ChainQueue chains = f.chains;
+  VertexQueue vertices = f.chainVertices;
+  ProposalQueue proposals = f.walked;
+  DepositQueue deposits = f.deposits;
+  ErptCounters counters;
+  for (auto _ : state) {
+    state.PauseTiming();
+    chains = f.chains;
+    vertices = f.chainVertices;
+    state.ResumeTiming();
+    forEachRange("accept", kSlots, kGrain, [&](IndexRange r) {
+      stageErptAccept(f.ctx, chains, vertices, proposals, f.proposalVertices, deposits, counters, r);
+    });
+  }
+  setRate(state, "mutations/s", kSlots);
+}
+
+void BM_ErptDeposit(benchmark::State& state) {
+  ErptFixture& f = fixture();
+  ChainQueue chains = f.chains;
+  VertexQueue vertices = f.chainVertices;
+  ProposalQueue proposals = f.walked;
+  DepositQueue deposits = f.deposits;
+  ErptCounters counters;
+  stageErptAccept(f.ctx, chains, vertices, proposals, f.proposalVertices, deposits, counters, {0, kSlots});
+  Film film(kSize, kSize);
+  for (auto _ : state) benchmark::DoNotOptimize(applyDeposits(deposits, kSlots, f.density, film));
+  setRate(state, "deposits/s", kSlots);
+}
+
+// The whole chain loop (refill, mutate, intersect, walk, connect, accept, deposit) on the
+// fixture's seeds: 16 mutations per pixel in chains of 100 steps.
+void BM_ErptChainLoop(benchmark::State& state) {
+  ErptFixture& f = fixture();
+  ThreadPool pool(int(state.range(0)));
+  ErptChains::Config config{f.ctx, 100, 7, false, kSlots};
+  config.step.depositEnergy = float(f.energy / (kSize * kSize * 16.0));
+  uint64_t mutations = 0, rays = 0;
+  double embree = 0, total = 0;
+  for (auto _ : state) {
+    Film film(kSize, kSize);
+    ErptStats stats;
+    StageTimes times;
+    ErptChains chains(f.tracer, config, film, stats, times);
+    chains.consume(f.seeds);
+    chains.finish();
+    mutations += stats.mutations;
+    rays += stats.rays;
+    for (const auto& [name, seconds] : times.all()) {
+      total += seconds;
+      if (name == "erpt intersect" || name == "erpt connect") embree += seconds;
+    }
+  }
+  state.counters["mutations/s"] = benchmark::Counter(double(mutations), benchmark::Counter::kIsRate);
+  state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
+  state.counters["embree_share"] = total > 0 ? embree / total : 0;
+}
+
+#define THREADS ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()
+BENCHMARK(BM_ErptMutate)->THREADS;
+BENCHMARK(BM_ErptIntersect)->THREADS;
+BENCHMARK(BM_ErptWalk)->THREADS;
+BENCHMARK(BM_ErptConnect)->THREADS;
+BENCHMARK(BM_ErptAccept)->THREADS;
+BENCHMARK(BM_ErptDeposit)->UseRealTime();
+BENCHMARK(BM_ErptChainLoop)->THREADS->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace erpt::bench

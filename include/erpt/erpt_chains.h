@@ -1,0 +1,62 @@
+// The chain machine of ERPT: turns seeds into Markov chains (equal deposition, paper figure
+// 6) and runs them as a wavefront over a fixed-size SoA chain queue. Finished chains retire
+// and their slots are refilled from the seeds before every step, so steps run with a full
+// queue and memory stays bounded by the queue, whatever the image size.
+#pragma once
+
+#include <vector>
+
+#include "erpt/erpt_stages.h"
+#include "erpt/render.h"
+#include "erpt/tracer.h"
+
+namespace erpt {
+
+class ErptChains {
+ public:
+  struct Config {
+    ErptStepContext step;
+    uint32_t chainLength = 100;
+    uint64_t seed = 0;
+    bool excludeDirect = false;  // leave paths of at most one bounce to the direct pass
+    size_t capacity = 1024;      // chain slots
+  };
+  ErptChains(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times);
+
+  // Whether a seed is ERPT's to redistribute (not left to the direct-lighting pass).
+  static bool takesSeed(const SeedStore& store, size_t i, bool excludeDirect);
+  // Starts floor(U + e / (m e_d)) chains for each seed of the batch and runs steps whenever
+  // the queue is full; on return every chain of the batch is in the queue (or done).
+  void consume(const SeedStore& batch);
+  // Runs the remaining chains to the end.
+  void finish();
+  // Energy added to the film so far (luminance), for tests.
+  double depositedEnergy() const { return deposited_; }
+
+ private:
+  bool refill();  // true when every slot is busy afterwards
+  void step();
+  void depositInPlace(const SeedStore& store, size_t seed, uint32_t chains);
+  bool anyActive() const;
+
+  const Tracer& tracer_;
+  Config config_;
+  Film& film_;
+  ErptStats& stats_;
+  StageTimes& times_;
+  ChainQueue chains_;
+  ProposalQueue proposals_;
+  VertexQueue chainVertices_, proposalVertices_;
+  RayQueue rays_, shadowRays_;
+  HitQueue hits_;
+  DepositQueue deposits_;
+  ErptCounters counters_;
+  // Chains of the current batch waiting for a slot: (seed index, copies left).
+  const SeedStore* batch_ = nullptr;
+  std::vector<std::pair<uint32_t, uint32_t>> pending_;
+  size_t pendingNext_ = 0;
+  uint64_t seedCounter_ = 0, chainCounter_ = 0;
+  double deposited_ = 0;
+};
+
+}  // namespace erpt

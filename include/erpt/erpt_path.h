@@ -1,0 +1,97 @@
+// ERPT's view of a path: vertices as plain values, the mutations that apply to a path's
+// signature (its sequence of vertex kinds), the perturbation samplers, and the path's
+// contribution in the measure each mutation samples in (docs/erpt-acceptance.md derives it).
+#pragma once
+
+#include <cstdint>
+
+#include "erpt/camera.h"
+#include "erpt/erpt_settings.h"
+#include "erpt/film_density.h"
+#include "erpt/light_sampler.h"
+#include "erpt/queues.h"
+
+namespace erpt {
+
+// Longest path a chain can hold (eye and light included). Longer seeds keep their energy at
+// their own pixel (their chains never move) and are counted as unhandled.
+constexpr int kMaxChainVertices = 12;
+
+enum class MutationKind : uint8_t { None = 0, Lens, Caustic };
+
+enum ProposalState : uint8_t { kProposalWalking = 0, kProposalConnecting, kProposalComplete, kProposalRejected };
+enum RejectReason : uint8_t {
+  kRejectNone = 0,
+  kRejectNoMutation,   // no mutation of the strategy applies to this path
+  kRejectOffFilm,      // the proposal's film position lies outside the sampled film
+  kRejectMissed,       // a traced ray missed (or escaped where the path had a surface)
+  kRejectKindChanged,  // a vertex of another kind (specular / non-specular / light) was hit
+  kRejectOccluded,     // the connection is blocked
+  kRejectZero,         // the proposal carries no light (back of an emitter, BSDF zero, ...)
+  kRejectByChance,     // valid proposal, not accepted by the coin flip
+  kRejectReasonCount
+};
+const char* rejectReasonName(RejectReason r);
+
+struct PathVertex {
+  Vec3 p, ns, ng;
+  int32_t material = -1;
+  float u = 0, v = 0;
+  uint8_t kind = kEyeVertex;
+  int32_t emitter = -1;
+};
+PathVertex loadVertex(const VertexQueue& q, size_t row);
+void storeVertex(VertexQueue& q, size_t row, const PathVertex& v);
+
+// Unit direction from vertex a towards vertex b (an environment vertex b: its direction).
+Vec3 directionBetween(const PathVertex& a, const PathVertex& b);
+// True when the path reflects at vertex j (its neighbours lie on the same side of it).
+bool reflectsAt(const PathVertex* path, int j);
+
+// A path's signature: its vertex kinds, 4 bits per vertex (mutations preserve it).
+uint64_t packSignature(const uint8_t* kinds, int n);
+inline uint8_t kindAt(uint64_t signature, int j) { return uint8_t((signature >> (4 * j)) & 15u); }
+// kinds must hold kMaxChainVertices entries.
+inline void unpackSignature(uint64_t signature, int n, uint8_t* kinds) {
+  for (int j = 0; j < n && j < kMaxChainVertices; ++j) kinds[j] = kindAt(signature, j);
+}
+
+// Lens perturbation: applies to every path that fits in a chain.
+// Caustic perturbation: the index s of the vertex it starts from (the first non-specular
+// vertex after the eye's non-specular vertex 1), or -1 when it does not apply (vertex 1 is
+// specular, the source is the environment, or the path is too short).
+int causticSource(const uint8_t* kinds, int n);
+// True for paths L...SDE (vertex 1 non-specular, vertex 2 specular).
+bool isCausticPath(const uint8_t* kinds, int n);
+// The mutation a strategy picks for a path signature; u picks when `Mixed` has two choices.
+// The choice depends on the signature only, which mutations preserve, so the selection
+// probabilities are the same forwards and backwards and cancel in the acceptance ratio.
+MutationKind chooseMutation(MutationStrategy s, const uint8_t* kinds, int n, float u);
+
+// Equal deposition (paper figure 6): a seed of energy e starts floor(u + e / (m e_d)) chains
+// of m steps, each step depositing e_d; u uniform in [0, 1) makes the expectation exact.
+uint32_t chainsForSeed(double energy, double chainLength, double depositEnergy, float u);
+
+// Perturbation angle for caustic perturbations and the direction changes of lens
+// perturbations: density proportional to 1/theta on [1e-4, 0.1] rad (Veach and Guibas 1997,
+// paper footnote 4), azimuth uniform. Symmetric in solid angle.
+Vec3 perturbDirection(Vec3 d, float u1, float u2);
+constexpr float kPerturbThetaMin = 1e-4f, kPerturbThetaMax = 0.1f;
+
+struct MeasureContext {
+  const Scene& scene;
+  const LightSampler& lights;
+  const Camera& camera;
+  const FilmDensity& film;
+};
+
+// The path's contribution f in the measure the lens perturbation samples: film position for
+// the eye's vertices, solid angle for perturbed directions, area for the vertex connected to
+// (docs/erpt-acceptance.md). RGB; black when the path carries nothing.
+Color lensContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY);
+// The same in the caustic perturbation's measure: solid angle at the source vertex s.
+Color causticContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY);
+Color contributionFor(MutationKind kind, const MeasureContext& c, const PathVertex* path, int n, float filmX,
+                      float filmY);
+
+}  // namespace erpt

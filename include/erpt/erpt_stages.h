@@ -1,0 +1,71 @@
+// ERPT stage kernels. Chain slot i owns row i of the chain, proposal, ray, hit, shadow-ray and
+// deposit queues, and rows [i * kMaxChainVertices, +kMaxChainVertices) of the chain's and the
+// proposal's vertex queues. One chain step is
+//   mutate -> (intersect -> walk)* -> connect (occlusion stream) -> resolve -> accept -> deposit
+// and every stage runs over an index range of slots (forEachRange spreads it over threads).
+#pragma once
+
+#include <atomic>
+
+#include "erpt/erpt_path.h"
+#include "erpt/film.h"
+#include "erpt/seeds.h"
+
+namespace erpt {
+
+struct ErptStepContext {
+  MeasureContext measure;
+  MutationStrategy strategy = MutationStrategy::Paper;
+  float lensRadius = 4.5f;       // half the side of the film square lens perturbations move in
+  float depositEnergy = 0;       // e_d
+  bool expectedDeposit = false;  // deposit (1 - q) at y and q at z instead of all at the chain's path
+};
+
+// Random dimensions of one chain step (stream key = the chain's key, dimension =
+// step * kStepDims + use). Direction perturbations at vertex j use kDimPerturb + 2j, +1.
+enum StepDim : uint32_t { kDimStrategy = 0, kDimAccept, kDimStart1, kDimStart2, kDimPerturb, kStepDims = 32 };
+inline uint32_t stepDim(uint32_t step, uint32_t use) { return step * kStepDims + use; }
+
+// Statistics the accept stage counts (summed over threads).
+struct ErptCounters {
+  std::atomic<uint64_t> proposed[3] = {}, accepted[3] = {};  // by MutationKind
+  std::atomic<uint64_t> rejected[kRejectReasonCount] = {};
+};
+
+// Loads the current path of chain `slot` into `out` (kMaxChainVertices entries); returns its
+// vertex count.
+int loadChainPath(const ChainQueue& chains, const VertexQueue& vertices, size_t slot, PathVertex* out);
+
+// Starts a chain in `slot` at seed `seed` of `store`: its vertices, film position, colour
+// rgb(X_f) / lum(X_f), random stream `key` and `chainLength` steps to go.
+void loadChainFromSeed(ChainQueue& chains, VertexQueue& chainVertices, size_t slot, const SeedStore& store,
+                       size_t seed, uint64_t key, uint32_t chainLength);
+
+// Chooses each active chain's mutation and starts it: the first ray of the proposal in `rays`
+// (lens: the eye ray through the perturbed film position; caustic: the perturbed ray leaving
+// the source vertex). Inactive chains and impossible proposals get a disabled ray.
+void stageErptMutate(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+                     ProposalQueue& proposals, RayQueue& rays, IndexRange range);
+
+// After intersect: checks each walking proposal's hit against the vertex kind the current path
+// has there, stores the new vertex, and either sets the next ray (through a specular chain, or
+// along a perturbed direction) or sets the connection ray in `shadowRays`. Returns how many
+// proposals are still walking.
+size_t stageErptWalk(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+                     ProposalQueue& proposals, VertexQueue& proposalVertices, RayQueue& rays, const HitQueue& hits,
+                     RayQueue& shadowRays, IndexRange range);
+
+// After the occlusion stream: rejects proposals whose connection is blocked.
+void stageErptResolveConnections(const RayQueue& shadowRays, ProposalQueue& proposals, IndexRange range);
+
+// Acceptance q = min(1, f(z) / f(y)) on luminance in the mutation's measure, the accept
+// decision, the step's deposit record(s), and the chain update.
+void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue& chainVertices,
+                     ProposalQueue& proposals, const VertexQueue& proposalVertices, DepositQueue& deposits,
+                     ErptCounters& counters, IndexRange range);
+
+// Adds the deposit records of slots [0, count) to the film in slot order, splatting each over
+// the pixels the filter reaches. Returns the total energy added (luminance), for tests.
+double applyDeposits(const DepositQueue& deposits, size_t count, const FilmDensity& density, Film& film);
+
+}  // namespace erpt

@@ -1,0 +1,30 @@
+// `erpt diff IMAGE REFERENCE`: error metrics of an image against a reference.
+#include <cstdio>
+
+#include <CLI/CLI.hpp>
+
+#include "commands.h"
+#include "erpt/image_metrics.h"
+
+namespace erpt::cli {
+
+void addDiffCommand(CLI::App& app, DiffArgs& a) {
+  CLI::App* cmd = app.add_subcommand("diff", "Compare an image with a reference: MSE, relMSE, channel means");
+  cmd->add_option("image", a.image, "Image (any format OpenImageIO reads)")->required();
+  cmd->add_option("reference", a.reference, "Reference (the same size, or an integer multiple: box-downsampled)")
+      ->required();
+}
+
+int runDiff(const DiffArgs& a) {
+  const RgbImage image = readImage(a.image), reference = readImage(a.reference);
+  const ImageComparison c = compareImages(image, reference);
+  std::printf("mse %.6g\nrelmse %.6g\n", c.mse, c.relMse);
+  std::printf("mean %.6g %.6g %.6g\nreference_mean %.6g %.6g %.6g\n", c.mean.x, c.mean.y, c.mean.z,
+              c.referenceMean.x, c.referenceMean.y, c.referenceMean.z);
+  auto ratio = [](float a, float b) { return b != 0 ? double(a) / double(b) : 0.0; };
+  std::printf("mean_ratio %.6f %.6f %.6f\nnonfinite_pixels %zu\n", ratio(c.mean.x, c.referenceMean.x),
+              ratio(c.mean.y, c.referenceMean.y), ratio(c.mean.z, c.referenceMean.z), c.nonFinite);
+  return 0;
+}
+
+}  // namespace erpt::cli

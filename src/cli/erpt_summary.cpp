@@ -1,0 +1,34 @@
+// ERPT statistics after a render: what the chains did and where the time went.
+#include <cstdio>
+
+#include "commands.h"
+#include "erpt/erpt_path.h"
+
+namespace erpt::cli {
+
+void printErptSummary(const RenderStats& stats) {
+  const ErptStats& e = stats.erpt;
+  auto pct = [](uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; };
+  const uint64_t lens = e.proposed[size_t(MutationKind::Lens)], caustic = e.proposed[size_t(MutationKind::Caustic)];
+  std::fprintf(stderr,
+               "erpt: e_ave %.4g, e_d %.4g; %llu seeds, %llu chains, %llu mutations (%.2f M/s in %.2f s of chain "
+               "loop), %llu deposits; %llu seeds no mutation could handle\n",
+               e.pilotEnergy, e.depositEnergy, (unsigned long long)e.seeds, (unsigned long long)e.chains,
+               (unsigned long long)e.mutations, e.erptSeconds > 0 ? double(e.mutations) / e.erptSeconds * 1e-6 : 0.0,
+               e.erptSeconds, (unsigned long long)e.deposits, (unsigned long long)e.unhandledSeeds);
+  std::fprintf(stderr, "erpt: lens %llu proposed, %.1f%% accepted; caustic %llu proposed, %.1f%% accepted; no mutation %llu\n",
+               (unsigned long long)lens, pct(e.accepted[size_t(MutationKind::Lens)], lens),
+               (unsigned long long)caustic, pct(e.accepted[size_t(MutationKind::Caustic)], caustic),
+               (unsigned long long)e.proposed[size_t(MutationKind::None)]);
+  std::fprintf(stderr, "erpt: rejected:");
+  for (int r = kRejectNoMutation; r < kRejectReasonCount; ++r)
+    std::fprintf(stderr, "%s %s %llu", r == kRejectNoMutation ? "" : ",", rejectReasonName(RejectReason(r)),
+                 (unsigned long long)e.rejected[r]);
+  std::fprintf(stderr, "\n");
+  std::fprintf(stderr, "erpt: %.2f Mrays/s in the chain loop; stage seconds:", e.erptSeconds > 0 ? double(e.rays) / e.erptSeconds * 1e-6 : 0.0);
+  for (const auto& [name, seconds] : stats.stages.all())
+    if (name.rfind("erpt ", 0) == 0) std::fprintf(stderr, " %s %.2f", name.c_str() + 5, seconds);
+  std::fprintf(stderr, "\n");
+}
+
+}  // namespace erpt::cli

@@ -1,0 +1,115 @@
+// Path signatures, mutation choice and the perturbation sampler of ERPT.
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <cstdint>
+
+#include "erpt/erpt_path.h"
+#include "erpt/warp.h"
+
+namespace erpt {
+
+const char* rejectReasonName(RejectReason r) {
+  switch (r) {
+    case kRejectNone: return "none";
+    case kRejectNoMutation: return "no mutation applies";
+    case kRejectOffFilm: return "off the film";
+    case kRejectMissed: return "ray missed";
+    case kRejectKindChanged: return "vertex kind changed";
+    case kRejectOccluded: return "connection occluded";
+    case kRejectZero: return "zero contribution";
+    case kRejectByChance: return "not accepted (q)";
+    default: return "?";
+  }
+}
+
+PathVertex loadVertex(const VertexQueue& q, size_t i) {
+  PathVertex v;
+  v.p = {q.px[i], q.py[i], q.pz[i]};
+  v.ns = {q.nsX[i], q.nsY[i], q.nsZ[i]};
+  v.ng = {q.ngX[i], q.ngY[i], q.ngZ[i]};
+  v.material = q.material[i];
+  v.u = q.u[i];
+  v.v = q.v[i];
+  v.kind = q.kind[i];
+  v.emitter = q.emitter[i];
+  return v;
+}
+
+void storeVertex(VertexQueue& q, size_t i, const PathVertex& v) {
+  q.px[i] = v.p.x;
+  q.py[i] = v.p.y;
+  q.pz[i] = v.p.z;
+  q.nsX[i] = v.ns.x;
+  q.nsY[i] = v.ns.y;
+  q.nsZ[i] = v.ns.z;
+  q.ngX[i] = v.ng.x;
+  q.ngY[i] = v.ng.y;
+  q.ngZ[i] = v.ng.z;
+  q.material[i] = v.material;
+  q.u[i] = v.u;
+  q.v[i] = v.v;
+  q.kind[i] = v.kind;
+  q.emitter[i] = v.emitter;
+  q.pdfForward[i] = 0;
+  q.parent[i] = -1;
+}
+
+Vec3 directionBetween(const PathVertex& a, const PathVertex& b) {
+  // An environment vertex stores the direction it is seen in as -normal.
+  if (b.kind == kEnvironmentVertex) return -b.ns;
+  return normalize(b.p - a.p);
+}
+
+bool reflectsAt(const PathVertex* path, int j) {
+  const Vec3 n = path[j].ng;
+  return dot(directionBetween(path[j], path[j - 1]), n) * dot(directionBetween(path[j], path[j + 1]), n) > 0;
+}
+
+uint64_t packSignature(const uint8_t* kinds, int n) {
+  uint64_t s = 0;
+  for (int j = 0; j < n && j < 16; ++j) s |= uint64_t(kinds[j] & 15u) << (4 * j);
+  return s;
+}
+
+int causticSource(const uint8_t* kinds, int n) {
+  if (n < 3 || kinds[1] != kNonSpecularVertex) return -1;
+  int s = 2;
+  while (s < n && kinds[s] == kSpecularVertex) ++s;
+  if (s >= n || kinds[s] == kEnvironmentVertex) return -1;
+  return s;
+}
+
+bool isCausticPath(const uint8_t* kinds, int n) {
+  return n >= 4 && kinds[1] == kNonSpecularVertex && kinds[2] == kSpecularVertex && causticSource(kinds, n) > 0;
+}
+
+MutationKind chooseMutation(MutationStrategy s, const uint8_t* kinds, int n, float u) {
+  if (n < 2 || n > kMaxChainVertices) return MutationKind::None;
+  const bool caustic = causticSource(kinds, n) > 0;
+  switch (s) {
+    case MutationStrategy::Paper: return isCausticPath(kinds, n) ? MutationKind::Caustic : MutationKind::Lens;
+    case MutationStrategy::Mixed:
+      return caustic && u < 0.5f ? MutationKind::Caustic : MutationKind::Lens;
+    case MutationStrategy::LensOnly: return MutationKind::Lens;
+    case MutationStrategy::CausticOnly: return caustic ? MutationKind::Caustic : MutationKind::None;
+  }
+  return MutationKind::None;
+}
+
+uint32_t chainsForSeed(double energy, double chainLength, double depositEnergy, float u) {
+  const double expected = energy / (chainLength * depositEnergy);
+  if (!(expected >= 0)) return 0;
+  return uint32_t(std::min(double(UINT32_MAX), std::floor(double(u) + expected)));
+}
+
+Vec3 perturbDirection(Vec3 d, float u1, float u2) {
+  // theta = theta_max * (theta_min / theta_max)^u1: density proportional to 1 / theta.
+  const float theta = kPerturbThetaMax * std::exp(std::log(kPerturbThetaMin / kPerturbThetaMax) * u1);
+  const float phi = 2 * kPi * u2;
+  Frame f(d);
+  const float st = std::sin(theta);
+  return normalize(f.toWorld(Vec3{st * std::cos(phi), st * std::sin(phi), std::cos(theta)}));
+}
+
+}  // namespace erpt

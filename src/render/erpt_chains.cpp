@@ -1,0 +1,152 @@
+#include "erpt/erpt_chains.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "erpt/rng.h"
+
+namespace erpt {
+
+namespace {
+constexpr size_t kGrain = 256;
+constexpr uint64_t kChainStream = 0x636861696eull, kSeedStream = 0x73656564ull;
+
+double secondsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+}  // namespace
+
+ErptChains::ErptChains(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times)
+    : tracer_(tracer), config_(config), film_(film), stats_(stats), times_(times) {
+  const size_t c = config.capacity;
+  chains_.resize(c);
+  proposals_.resize(c);
+  chainVertices_.resize(c * kMaxChainVertices);
+  proposalVertices_.resize(c * kMaxChainVertices);
+  prepareRays(rays_, c);
+  prepareRays(shadowRays_, c);
+  hits_.resize(c);
+  deposits_.resize(c);
+  for (size_t i = 0; i < c; ++i) chains_.stepsLeft[i] = 0;
+}
+
+bool ErptChains::takesSeed(const SeedStore& store, size_t i, bool excludeDirect) {
+  // Eye, one surface vertex, light: a one-bounce path (two vertices: an emitter seen directly).
+  return !excludeDirect || store.seeds.vertexCount[i] > 3;
+}
+
+void ErptChains::consume(const SeedStore& batch) {
+  batch_ = &batch;
+  pending_.clear();
+  pendingNext_ = 0;
+  const double ed = config_.step.depositEnergy;
+  const double m = config_.chainLength;
+  for (size_t i = 0; i < batch.size(); ++i) {
+    if (!takesSeed(batch, i, config_.excludeDirect)) continue;
+    const float e = luminance(batch.contribution(i));
+    if (!(e > 0) || !std::isfinite(e)) continue;
+    ++stats_.seeds;
+    const float u = uniformFloat(streamKey(config_.seed, kSeedStream, seedCounter_++), 0);
+    const uint32_t copies = chainsForSeed(e, m, ed, u);
+    if (copies == 0) continue;
+    stats_.chains += copies;
+    if (batch.seeds.vertexCount[i] > uint32_t(kMaxChainVertices)) {
+      // Too long for a chain slot: its chains could never move; deposit what they would.
+      ++stats_.unhandledSeeds;
+      depositInPlace(batch, i, copies);
+      continue;
+    }
+    pending_.emplace_back(uint32_t(i), copies);
+
+  }
+  refill();
+  while (pendingNext_ < pending_.size()) {
+    step();
+    refill();
+  }
+  batch_ = nullptr;
+}
+
+void ErptChains::finish() {
+  while (anyActive()) step();
+}
+
+bool ErptChains::anyActive() const {
+  for (size_t i = 0; i < chains_.size(); ++i)
+    if (chains_.stepsLeft[i] > 0) return true;
+  return false;
+}
+
+bool ErptChains::refill() {
+  auto start = std::chrono::steady_clock::now();
+  bool full = true;
+  for (size_t slot = 0; slot < chains_.size(); ++slot) {
+    if (chains_.stepsLeft[slot] > 0) continue;
+    if (pendingNext_ >= pending_.size()) {
+      full = false;
+      break;
+    }
+    auto& [seed, copies] = pending_[pendingNext_];
+    loadChainFromSeed(chains_, chainVertices_, slot, *batch_, seed, streamKey(config_.seed, kChainStream, chainCounter_++),
+                      config_.chainLength);
+    if (--copies == 0) ++pendingNext_;
+  }
+  times_.add("erpt refill", secondsSince(start));
+  return full;
+}
+
+void ErptChains::depositInPlace(const SeedStore& store, size_t seed, uint32_t chains) {
+  const Color c = store.contribution(seed);
+  const Color energy = c / luminance(c) * float(config_.step.depositEnergy * config_.chainLength * chains);
+  deposited_ += luminance(energy);
+  config_.step.measure.film.splat(store.seeds.filmX[seed], store.seeds.filmY[seed],
+                                  [&](uint32_t pixel, float w) { film_.add(pixel, energy * w); });
+}
+
+void ErptChains::step() {
+  const size_t c = chains_.size();
+  const ErptStepContext& ctx = config_.step;
+  std::atomic<size_t> walking{0}, rays{0};
+  forEachRange("erpt mutate", c, kGrain, [&](IndexRange r) {
+    stageErptMutate(ctx, chains_, chainVertices_, proposals_, rays_, r);
+    for (size_t i = r.begin; i < r.end; ++i) disableRay(shadowRays_, i);
+  }, &times_);
+  for (int pass = 0; pass < kMaxChainVertices; ++pass) {
+    forEachRange("erpt intersect", c, kGrain, [&](IndexRange r) {
+      size_t traced = 0;
+      for (size_t i = r.begin; i < r.end; ++i) traced += rays_.tnear[i] <= rays_.tfar[i];
+      rays += traced;
+      tracer_.intersect(rays_, hits_, r, RayCoherence::Incoherent);
+    }, &times_);
+    forEachRange("erpt walk", c, kGrain, [&](IndexRange r) {
+      walking += stageErptWalk(ctx, chains_, chainVertices_, proposals_, proposalVertices_, rays_, hits_, shadowRays_, r);
+    }, &times_);
+    if (walking.exchange(0) == 0) break;
+  }
+  forEachRange("erpt connect", c, kGrain, [&](IndexRange r) {
+    size_t traced = 0;
+    for (size_t i = r.begin; i < r.end; ++i) traced += shadowRays_.tnear[i] <= shadowRays_.tfar[i];
+    rays += traced;
+    tracer_.occluded(shadowRays_, r);
+    stageErptResolveConnections(shadowRays_, proposals_, r);
+  }, &times_);
+  stats_.rays += rays;
+  forEachRange("erpt accept", c, kGrain, [&](IndexRange r) {
+    stageErptAccept(ctx, chains_, chainVertices_, proposals_, proposalVertices_, deposits_, counters_, r);
+  }, &times_);
+  auto start = std::chrono::steady_clock::now();
+  deposited_ += applyDeposits(deposits_, c, ctx.measure.film, film_);
+  times_.add("erpt deposit", secondsSince(start));
+  // Counters to stats.
+  uint64_t steps = 0;
+  for (int k = 0; k < 3; ++k) {
+    stats_.proposed[k] = counters_.proposed[k];
+    stats_.accepted[k] = counters_.accepted[k];
+    steps += counters_.proposed[k];
+  }
+  for (int r = 0; r < kRejectReasonCount; ++r) stats_.rejected[r] = counters_.rejected[r];
+  stats_.mutations = steps;
+  stats_.deposits = steps;
+}
+
+}  // namespace erpt

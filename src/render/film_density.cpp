@@ -1,0 +1,25 @@
+#include "erpt/film_density.h"
+
+#include <cmath>
+
+namespace erpt {
+
+FilmDensity::FilmDensity(const PixelFilter& filter, int width, int height)
+    : filter_(filter), width_(width), height_(height) {
+  // Integral of the 1D filter by the midpoint rule (box and tent: exactly 1).
+  const int n = 4096;
+  const float r = filter.radius();
+  double sum = 0;
+  for (int i = 0; i < n; ++i) sum += filter.eval(-r + 2 * r * (i + 0.5f) / n);
+  norm_ = float(n / (sum * 2 * r));
+}
+
+float FilmDensity::axis(float x, int size) const {
+  const float r = filter_.radius();
+  int lo = std::max(0, int(std::floor(x - 0.5f - r)) + 1), hi = std::min(size - 1, int(std::floor(x - 0.5f + r)));
+  float sum = 0;
+  for (int p = lo; p <= hi; ++p) sum += filter_.eval(x - (float(p) + 0.5f));
+  return sum * norm_;
+}
+
+}  // namespace erpt

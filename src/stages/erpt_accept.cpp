@@ -1,0 +1,107 @@
+// ERPT accept stage: acceptance probability from the path contributions in the mutation's
+// measure, the Metropolis decision, the step's deposits (equal deposition: every step of
+// every chain deposits e_d), and the chain update.
+#include <cmath>
+
+#include "erpt/erpt_stages.h"
+#include "erpt/rng.h"
+
+namespace erpt {
+
+namespace {
+
+// Vertices [1, last] of a complete proposal were regenerated; the rest are the chain's.
+int lastRegenerated(MutationKind kind, const PathVertex* path, int n, int connectTo) {
+  if (kind == MutationKind::Caustic) {
+    uint8_t kinds[kMaxChainVertices];
+    for (int j = 0; j < n; ++j) kinds[j] = path[j].kind;
+    return causticSource(kinds, n) - 1;
+  }
+  return connectTo > 0 ? connectTo - 1 : n - 1;
+}
+
+void writeDeposit(DepositQueue& d, size_t i, int which, float x, float y, Color c) {
+  if (which == 0) {
+    d.x0[i] = x, d.y0[i] = y, d.r0[i] = c.x, d.g0[i] = c.y, d.b0[i] = c.z;
+  } else {
+    d.x1[i] = x, d.y1[i] = y, d.r1[i] = c.x, d.g1[i] = c.y, d.b1[i] = c.z;
+  }
+}
+
+}  // namespace
+
+void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue& chainVertices,
+                     ProposalQueue& proposals, const VertexQueue& proposalVertices, DepositQueue& deposits,
+                     ErptCounters& counters, IndexRange range) {
+  PathVertex y[kMaxChainVertices], z[kMaxChainVertices];
+  uint64_t proposed[3] = {}, accepted[3] = {}, rejected[kRejectReasonCount] = {};
+  for (size_t i = range.begin; i < range.end; ++i) {
+    writeDeposit(deposits, i, 0, 0, 0, Color(0.0f));
+    writeDeposit(deposits, i, 1, 0, 0, Color(0.0f));
+    if (chains.stepsLeft[i] == 0) continue;
+    const int n = loadChainPath(chains, chainVertices, i, y);
+    const MutationKind kind = MutationKind(proposals.mutation[i]);
+    const size_t base = i * kMaxChainVertices;
+    float q = 0;
+    int last = 0;
+    Color fz(0.0f);
+    float fzLum = 0;
+    if (proposals.state[i] == kProposalComplete) {
+      last = lastRegenerated(kind, y, n, proposals.connectTo[i]);
+      for (int j = 0; j < n; ++j) z[j] = j >= 1 && j <= last ? loadVertex(proposalVertices, base + size_t(j)) : y[j];
+      fz = contributionFor(kind, ctx.measure, z, n, proposals.filmX[i], proposals.filmY[i]);
+      const float lz = luminance(fz);
+      if (lz > 0 && std::isfinite(lz)) {
+        // f(y) in this mutation's measure: cached from the step that made y current, if it
+        // used the same mutation (always, under the paper's strategy).
+        if (chains.fKind[i] != uint8_t(kind)) {
+          chains.fLum[i] = luminance(contributionFor(kind, ctx.measure, y, n, chains.filmX[i], chains.filmY[i]));
+          chains.fKind[i] = uint8_t(kind);
+        }
+        const float ly = chains.fLum[i];
+        q = ly > 0 ? std::min(1.0f, lz / ly) : 1.0f;
+        fz = fz / lz;
+        fzLum = lz;
+      } else {
+        proposals.reason[i] = kRejectZero;
+      }
+    }
+    proposals.acceptance[i] = q;
+    const bool accept = uniformFloat(chains.key[i], stepDim(chains.step[i], kDimAccept)) < q;
+    if (q > 0 && !accept) proposals.reason[i] = kRejectByChance;
+    ++proposed[size_t(kind)];
+    if (accept)
+      ++accepted[size_t(kind)];
+    else
+      ++rejected[proposals.reason[i]];
+
+    const Color colorY{chains.colorR[i], chains.colorG[i], chains.colorB[i]};
+    const float ed = ctx.depositEnergy;
+    if (ctx.expectedDeposit) {
+      writeDeposit(deposits, i, 0, chains.filmX[i], chains.filmY[i], colorY * (ed * (1 - q)));
+      if (q > 0) writeDeposit(deposits, i, 1, proposals.filmX[i], proposals.filmY[i], fz * (ed * q));
+    }
+    if (accept) {
+      for (int j = 1; j <= last; ++j) chainVertices.copyRow(base + size_t(j), proposalVertices, base + size_t(j));
+      chains.filmX[i] = proposals.filmX[i];
+      chains.filmY[i] = proposals.filmY[i];
+      chains.colorR[i] = fz.x;
+      chains.colorG[i] = fz.y;
+      chains.colorB[i] = fz.z;
+      chains.fLum[i] = fzLum;
+      chains.fKind[i] = uint8_t(kind);
+    }
+    if (!ctx.expectedDeposit)
+      writeDeposit(deposits, i, 0, chains.filmX[i], chains.filmY[i],
+                   Color(chains.colorR[i], chains.colorG[i], chains.colorB[i]) * ed);
+    ++chains.step[i];
+    --chains.stepsLeft[i];
+  }
+  for (int k = 0; k < 3; ++k) {
+    counters.proposed[k] += proposed[k];
+    counters.accepted[k] += accepted[k];
+  }
+  for (int r = 0; r < kRejectReasonCount; ++r) counters.rejected[r] += rejected[r];
+}
+
+}  // namespace erpt

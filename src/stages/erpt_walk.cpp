@@ -1,0 +1,168 @@
+// ERPT walk stage: one bounce of every walking proposal. A lens proposal walks from the eye
+// towards the light, a caustic proposal from its source vertex towards the eye; both must
+// meet the same kinds of vertices as the current path and take the same specular lobes.
+#include "erpt/bsdf.h"
+#include "erpt/erpt_stages.h"
+#include "erpt/rng.h"
+#include "erpt/surface.h"
+#include "erpt/tracer.h"
+
+namespace erpt {
+
+namespace {
+
+void reject(ProposalQueue& p, RayQueue& rays, size_t i, RejectReason why) {
+  p.state[i] = kProposalRejected;
+  p.reason[i] = why;
+  disableRay(rays, i);
+}
+
+// Sets the occlusion ray between two points; `toInfinity` follows `dir` out of the scene.
+void setConnection(RayQueue& shadowRays, size_t i, const PathVertex& from, Vec3 to, bool toInfinity, Vec3 dir) {
+  Vec3 origin = offsetOrigin(from.p, from.ng, dir);
+  float tfar = toInfinity ? std::numeric_limits<float>::infinity() : length(to - origin) * (1 - 1e-4f);
+  setRay(shadowRays, i, origin, dir, 0.0f, tfar);
+}
+
+}  // namespace
+
+size_t stageErptWalk(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+                     ProposalQueue& proposals, VertexQueue& proposalVertices, RayQueue& rays, const HitQueue& hits,
+                     RayQueue& shadowRays, IndexRange range) {
+  const MeasureContext& mc = ctx.measure;
+  const Scene& scene = mc.scene;
+  size_t walking = 0;
+  for (size_t i = range.begin; i < range.end; ++i) {
+    if (proposals.state[i] != kProposalWalking) continue;
+    disableRay(shadowRays, i);
+    const int n = chains.vertexCount[i];
+    const int j = proposals.cursor[i];
+    const bool lens = proposals.mutation[i] == uint8_t(MutationKind::Lens);
+    // The current path's vertices j - 1, j, j + 1 (all a walk step looks at).
+    const size_t chainRow = i * kMaxChainVertices + size_t(j);
+    PathVertex window[3];
+    for (int k = 0; k < 3; ++k)
+      if (j - 1 + k >= 0 && j - 1 + k < n) window[k] = loadVertex(chainVertices, chainRow - 1 + size_t(k));
+    const PathVertex& expected = window[1];
+    const Vec3 origin{rays.orgX[i], rays.orgY[i], rays.orgZ[i]};
+    const Vec3 dir = normalize(Vec3{rays.dirX[i], rays.dirY[i], rays.dirZ[i]});
+    const size_t row = i * kMaxChainVertices + size_t(j);
+
+    PathVertex z;
+    if (hits.geomID[i] == kNoHit) {
+      if (!lens || expected.kind != kEnvironmentVertex) {
+        reject(proposals, rays, i, kRejectMissed);
+        continue;
+      }
+      z.p = origin + dir * 1e6f;
+      z.ns = z.ng = -dir;
+      z.kind = kEnvironmentVertex;
+      z.emitter = expected.emitter;
+      storeVertex(proposalVertices, row, z);
+      proposals.state[i] = kProposalComplete;
+      disableRay(rays, i);
+      continue;
+    }
+    const SurfacePoint sp = surfaceAt(scene.mesh, hits.primID[i], hits.u[i], hits.v[i]);
+    const Material& m = scene.materials[size_t(sp.material)];
+    z.p = sp.position;
+    z.ns = sp.shading.n;
+    z.ng = sp.geometricNormal;
+    z.material = sp.material;
+    z.u = sp.u;
+    z.v = sp.v;
+    z.kind = expected.kind;
+    z.emitter = scene.mesh.emitter[sp.triangle];
+
+    if (expected.kind == kLightVertex) {
+      // Only a lens walk reaches the light by tracing (the path's last vertex).
+      if (!lens || j != n - 1 || isBlack(mc.lights.emitted(sp.triangle, -dir))) {
+        reject(proposals, rays, i, kRejectKindChanged);
+        continue;
+      }
+      storeVertex(proposalVertices, row, z);
+      proposals.state[i] = kProposalComplete;
+      disableRay(rays, i);
+      continue;
+    }
+    // Specular vertices need a Dirac lobe (plastic's coat has one too), non-specular ones a
+    // non-Dirac component.
+    const bool kindMatches = expected.kind == kSpecularVertex     ? m.hasSpecular()
+                             : expected.kind == kNonSpecularVertex ? !m.isPureSpecular()
+                                                                   : false;
+    if (!kindMatches) {
+      reject(proposals, rays, i, kRejectKindChanged);
+      continue;
+    }
+    storeVertex(proposalVertices, row, z);
+
+    if (expected.kind == kSpecularVertex) {
+      // Follow the same lobe (reflection or transmission) as the current path.
+      Vec3 wo;
+      const Vec3 wiLocal = sp.shading.toLocal(-dir);
+      if (!specularDirection(m, wiLocal, reflectsAt(window, 1), wo)) {
+        reject(proposals, rays, i, kRejectKindChanged);
+        continue;
+      }
+      const Vec3 next = sp.shading.toWorld(wo);
+      setRay(rays, i, offsetOrigin(sp.position, sp.geometricNormal, next), next, 0.0f,
+             std::numeric_limits<float>::infinity());
+      proposals.cursor[i] = int8_t(lens ? j + 1 : j - 1);
+      ++walking;
+      continue;
+    }
+
+    // A non-specular vertex.
+    if (!lens) {
+      // Caustic: this is vertex 1; connect it to the eye (rule 5).
+      float fx, fy;
+      if (!mc.camera.project(z.p, fx, fy) || !(mc.film.density(fx, fy) > 0)) {
+        reject(proposals, rays, i, kRejectOffFilm);
+        continue;
+      }
+      proposals.filmX[i] = fx;
+      proposals.filmY[i] = fy;
+      const Vec3 eye = mc.camera.position();
+      setConnection(shadowRays, i, z, eye, false, normalize(eye - z.p));
+      proposals.connectTo[i] = 0;
+      proposals.state[i] = kProposalConnecting;
+      disableRay(rays, i);
+      continue;
+    }
+    const PathVertex& next = window[2];
+    if (next.kind == kSpecularVertex) {
+      // Perturb the current path's direction here and walk through the next specular chain.
+      const uint64_t key = chains.key[i];
+      const uint32_t step = chains.step[i];
+      const Vec3 d = perturbDirection(directionBetween(window[1], next), uniformFloat(key, stepDim(step, kDimPerturb + 2 * j)),
+                                      uniformFloat(key, stepDim(step, kDimPerturb + 2 * j + 1)));
+      setRay(rays, i, offsetOrigin(z.p, z.ng, d), d, 0.0f, std::numeric_limits<float>::infinity());
+      proposals.cursor[i] = int8_t(j + 1);
+      ++walking;
+      continue;
+    }
+    // Two non-specular vertices in a row (or the light): connect to the current path's next
+    // vertex, which stays where it is.
+    const bool environment = next.kind == kEnvironmentVertex;
+    const Vec3 d = environment ? -next.ns : normalize(next.p - z.p);
+    setConnection(shadowRays, i, z, environment ? Vec3(0.0f) : offsetOrigin(next.p, next.ng, -d), environment, d);
+    proposals.connectTo[i] = int8_t(j + 1);
+    proposals.state[i] = kProposalConnecting;
+    disableRay(rays, i);
+  }
+  return walking;
+}
+
+void stageErptResolveConnections(const RayQueue& shadowRays, ProposalQueue& proposals, IndexRange range) {
+  for (size_t i = range.begin; i < range.end; ++i) {
+    if (proposals.state[i] != kProposalConnecting) continue;
+    if (shadowRays.tfar[i] >= 0) {
+      proposals.state[i] = kProposalComplete;
+    } else {
+      proposals.state[i] = kProposalRejected;
+      proposals.reason[i] = kRejectOccluded;
+    }
+  }
+}
+
+}  // namespace erpt

@@ -1,0 +1,63 @@
+#include "support/erpt_world.h"
+
+#include "erpt/render.h"
+
+namespace erpt::test {
+
+ErptWorld::ErptWorld(const std::string& sceneFile, int size, int spp, FilterKind filterKind, uint64_t seed)
+    : scene(loadScene(sceneFile)), width(size), height(size) {
+  tracer = std::make_unique<Tracer>(scene);
+  camera = std::make_unique<Camera>(scene.camera, width, height);
+  filter = std::make_unique<PixelFilter>(filterKind);
+  lights = std::make_unique<LightSampler>(scene);
+  density = std::make_unique<FilmDensity>(*filter, width, height);
+  RenderSettings s;
+  s.integrator = "path";
+  s.width = s.height = size;
+  s.spp = spp;
+  s.seed = seed;
+  s.filterSet = true;
+  s.filter = filterKind;
+  s.seeds = &seeds;
+  RenderStats stats;
+  render(scene, s, stats);
+}
+
+ErptStepContext ErptWorld::stepContext(MutationStrategy strategy, float depositEnergy) const {
+  ErptStepContext c{measure()};
+  c.strategy = strategy;
+  c.depositEnergy = depositEnergy;
+  return c;
+}
+
+int ErptWorld::seedPath(size_t seed, PathVertex* out) const {
+  const int n = int(seeds.seeds.vertexCount[seed]);
+  for (int j = 0; j < n; ++j) out[j] = loadVertex(seeds.vertices, seeds.seeds.vertexBegin[seed] + size_t(j));
+  return n;
+}
+
+ChainQueues::ChainQueues(size_t capacity) {
+  chains.resize(capacity);
+  proposals.resize(capacity);
+  chainVertices.resize(capacity * kMaxChainVertices);
+  proposalVertices.resize(capacity * kMaxChainVertices);
+  prepareRays(rays, capacity);
+  prepareRays(shadowRays, capacity);
+  hits.resize(capacity);
+  deposits.resize(capacity);
+  for (size_t i = 0; i < capacity; ++i) chains.stepsLeft[i] = 0;
+}
+
+void ChainQueues::propose(const ErptWorld& world, const ErptStepContext& ctx) {
+  const IndexRange all{0, chains.size()};
+  stageErptMutate(ctx, chains, chainVertices, proposals, rays, all);
+  for (size_t i = 0; i < all.end; ++i) disableRay(shadowRays, i);
+  for (int pass = 0; pass < kMaxChainVertices; ++pass) {
+    world.tracer->intersect(rays, hits, all, RayCoherence::Incoherent);
+    if (stageErptWalk(ctx, chains, chainVertices, proposals, proposalVertices, rays, hits, shadowRays, all) == 0) break;
+  }
+  world.tracer->occluded(shadowRays, all);
+  stageErptResolveConnections(shadowRays, proposals, all);
+}
+
+}  // namespace erpt::test

@@ -1,0 +1,47 @@
+// A scene with everything ERPT's stages read (tracer, camera, filter, lights, film density)
+// and a store of path-traced seeds, for stage-level tests.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "erpt/erpt_stages.h"
+#include "erpt/scene_loader.h"
+#include "erpt/tracer.h"
+
+namespace erpt::test {
+
+struct ErptWorld {
+  Scene scene;
+  int width, height;
+  std::unique_ptr<Tracer> tracer;
+  std::unique_ptr<Camera> camera;
+  std::unique_ptr<PixelFilter> filter;
+  std::unique_ptr<LightSampler> lights;
+  std::unique_ptr<FilmDensity> density;
+  SeedStore seeds;
+
+  // Loads `sceneFile` at size x size (filter: `filter`) and path-traces `spp` samples per pixel
+  // with seed recording.
+  ErptWorld(const std::string& sceneFile, int size, int spp, FilterKind filter, uint64_t seed = 1);
+  MeasureContext measure() const { return {scene, *lights, *camera, *density}; }
+  ErptStepContext stepContext(MutationStrategy strategy, float depositEnergy = 1) const;
+  // The seed's path as PathVertex values.
+  int seedPath(size_t seed, PathVertex* out) const;
+};
+
+// Queues for `capacity` chains, and one full chain step run stage by stage (as ErptChains
+// does) so tests can look between the stages.
+struct ChainQueues {
+  ChainQueue chains;
+  ProposalQueue proposals;
+  VertexQueue chainVertices, proposalVertices;
+  RayQueue rays, shadowRays;
+  HitQueue hits;
+  DepositQueue deposits;
+  explicit ChainQueues(size_t capacity);
+  // mutate -> (intersect -> walk)* -> connect; stops before accept.
+  void propose(const ErptWorld& world, const ErptStepContext& ctx);
+};
+
+}  // namespace erpt::test
