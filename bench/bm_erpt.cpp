@@ -31,7 +31,7 @@ struct ErptFixture {
   VertexQueue chainVertices, proposalVertices;
   RayQueue eyeRays, rays, shadowRays, tracedShadowRays;
   HitQueue hits;
-  ProposalQueue walked;
+  ProposalQueue mutated, walked;  // proposals after mutate, after walk + connect
   DepositQueue deposits;
   double energy = 0;  // sum of seed luminances
 
@@ -61,6 +61,7 @@ struct ErptFixture {
     stageErptMutate(ctx, chains, chainVertices, proposals, rays, all);
     for (size_t i = 0; i < kSlots; ++i) disableRay(shadowRays, i);
     eyeRays = rays;
+    mutated = proposals;
     tracer.intersect(rays, hits, all, RayCoherence::Incoherent);
     stageErptWalk(ctx, chains, chainVertices, proposals, proposalVertices, rays, hits, shadowRays, all);
     walked = proposals;
@@ -116,7 +117,7 @@ void BM_ErptIntersect(benchmark::State& state) {
 void BM_ErptWalk(benchmark::State& state) {
   ErptFixture& f = fixture();
   ThreadPool pool(int(state.range(0)));
-  ProposalQueue proposals = f.proposals;
+  ProposalQueue proposals = f.mutated;
   RayQueue rays = f.eyeRays, shadow = f.shadowRays;
   VertexQueue vertices = f.proposalVertices;
   HitQueue hits = f.hits;
@@ -127,7 +128,7 @@ void BM_ErptWalk(benchmark::State& state) {
   const RayQueue traced = rays;
   for (auto _ : state) {
     state.PauseTiming();
-    proposals = f.proposals;
+    proposals = f.mutated;
     rays = traced;
     state.ResumeTiming();
     forEachRange("walk", kSlots, kGrain, [&](IndexRange r) {

@@ -85,13 +85,29 @@ struct MeasureContext {
   const FilmDensity& film;
 };
 
+// The vertices a mutation leaves untouched, with their incoming directions, contribute a
+// constant factor to f (the "fixed tail", from tailStart() on). Chains cache it: it cancels in
+// the acceptance ratio, but its colour is part of the path's colour.
+struct FixedTail {
+  Color value{1.0f};
+  bool known = false;
+};
+// Index of the first tail vertex of a path under a mutation (n: no tail). f reads vertices up
+// to this index (inclusive) when the tail is known.
+int tailStart(MutationKind kind, const uint8_t* kinds, int n);
+// The vertex the lens perturbation connects to (-1: its walk reaches the light by tracing).
+int lensConnectionTarget(const uint8_t* kinds, int n);
+
 // The path's contribution f in the measure the lens perturbation samples: film position for
 // the eye's vertices, solid angle for perturbed directions, area for the vertex connected to
-// (docs/erpt-acceptance.md). RGB; black when the path carries nothing.
-Color lensContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY);
+// (docs/erpt-acceptance.md). RGB; black when the path carries nothing. `tail`: the cached
+// fixed tail (used when known, filled in when not), or null to compute it.
+Color lensContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY,
+                       FixedTail* tail = nullptr);
 // The same in the caustic perturbation's measure: solid angle at the source vertex s.
-Color causticContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY);
+Color causticContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY,
+                          FixedTail* tail = nullptr);
 Color contributionFor(MutationKind kind, const MeasureContext& c, const PathVertex* path, int n, float filmX,
-                      float filmY);
+                      float filmY, FixedTail* tail = nullptr);
 
 }  // namespace erpt

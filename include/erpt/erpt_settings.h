@@ -17,7 +17,7 @@ struct ErptSettings {
   MutationStrategy strategy = MutationStrategy::Paper;
   int pilotSpp = 4;             // samples per pixel of the pilot pass estimating e_ave
   bool expectedDeposit = false; // deposit (1 - q) at y and q at z instead of the paper's rule
-  int directSamples = -1;       // >= 1: one-bounce paths by a direct-lighting pass; -1: ERPT does all
+  int directSamples = 64;       // >= 1: one-bounce paths by a direct-lighting pass (N spp); -1: ERPT does all
 };
 
 struct ErptStats {

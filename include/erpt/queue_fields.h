@@ -140,6 +140,10 @@
   F(uint64_t, signature, "vertex kinds of the current path, 4 bits each (erpt_path.h)") \
   F(float, fLum, "lum(f) of the current path in the measure of mutation fKind (a cache)") \
   F(uint8_t, fKind, "MutationKind fLum belongs to; None: not known") \
+  F(float, tailR, "fixed tail of f for mutation tailKind (erpt_path.h), red") \
+  F(float, tailG, "green")                                                   \
+  F(float, tailB, "blue")                                                    \
+  F(uint8_t, tailKind, "MutationKind the tail belongs to; None: not known")  \
   F(float, filmX, "film position of the current path, x in pixels")          \
   F(float, filmY, "y")                                                       \
   F(float, colorR, "rgb(f) / lum(f) of the current path, red")               \

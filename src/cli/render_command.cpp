@@ -49,7 +49,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
       ->check(CLI::Range(1, 1 << 16));
   cmd->add_option("--deposit", a.deposit, "ERPT: paper (all of a step's energy at the chain's path) or expected ((1-q) at y, q at z)")
       ->check(CLI::IsMember({"paper", "expected"}));
-  cmd->add_option("--direct-samples", e.directSamples, "ERPT: one-bounce paths by a direct-lighting pass with N samples per pixel; -1: ERPT renders them too")
+  cmd->add_option("--direct-samples", e.directSamples, "ERPT: one-bounce paths by a direct-lighting pass with N samples per pixel (default 64); -1: ERPT renders them too, as in the paper")
       ->check(CLI::Range(-1, 1 << 16));
 }
 

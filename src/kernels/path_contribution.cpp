@@ -2,6 +2,7 @@
 // acceptance probability of a mutation is the ratio of these for the proposal and the
 // current path: the mutations' own sampling densities are symmetric in these measures and
 // cancel.
+#include <algorithm>
 #include <cmath>
 
 #include "erpt/bsdf.h"
@@ -84,7 +85,32 @@ Color fixedTail(const MeasureContext& c, const PathVertex* path, int n, int firs
 
 }  // namespace
 
-Color lensContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY) {
+// The tail from `first` on: from the cache when it holds it, else computed (and cached).
+Color tailFrom(const MeasureContext& c, const PathVertex* path, int n, int first, FixedTail* cache) {
+  if (cache && cache->known) return cache->value;
+  const Color t = fixedTail(c, path, n, first);
+  if (cache) *cache = FixedTail{t, true};
+  return t;
+}
+
+int lensConnectionTarget(const uint8_t* kinds, int n) {
+  for (int j = 1; j < n; ++j) {
+    if (kinds[j] == kLightVertex || kinds[j] == kEnvironmentVertex) return -1;  // reached by tracing
+    if (kinds[j] == kSpecularVertex || (j + 1 < n && kinds[j + 1] == kSpecularVertex)) continue;
+    return j + 1;
+  }
+  return -1;
+}
+
+int tailStart(MutationKind kind, const uint8_t* kinds, int n) {
+  int last = -1;  // the last vertex whose factor a mutation changes
+  if (kind == MutationKind::Lens) last = lensConnectionTarget(kinds, n);
+  if (kind == MutationKind::Caustic) last = causticSource(kinds, n);
+  return last < 0 ? n : std::min(n, last + 1);
+}
+
+Color lensContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY,
+                       FixedTail* tail) {
   Color f(c.film.density(filmX, filmY));
   if (isBlack(f)) return f;
   for (int j = 1; j < n; ++j) {
@@ -102,12 +128,18 @@ Color lensContribution(const MeasureContext& c, const PathVertex* path, int n, f
     if (path[j + 1].kind == kSpecularVertex) continue;  // perturbed direction: solid angle
     // Connection to the fixed vertex t = j + 1 (area measure), which keeps its outgoing
     // direction but sees a new incoming one; then the rest of the path.
-    return f * fixedTail(c, path, n, j + 1);
+    const PathVertex& t = path[j + 1];
+    f *= areaFactor(c, v, t);
+    if (t.kind == kLightVertex || t.kind == kEnvironmentVertex) return f * emittedAlong(c, t, -toNext);
+    if (j + 2 >= n) return Color(0.0f);
+    f *= evalAt(c, t, -toNext, directionBetween(t, path[j + 2]));
+    return f * tailFrom(c, path, n, j + 2, tail);
   }
   return Color(0.0f);
 }
 
-Color causticContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY) {
+Color causticContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY,
+                          FixedTail* tail) {
   uint8_t kinds[kMaxChainVertices];
   if (n > kMaxChainVertices) return Color(0.0f);
   for (int j = 0; j < n; ++j) kinds[j] = path[j].kind;
@@ -137,14 +169,14 @@ Color causticContribution(const MeasureContext& c, const PathVertex* path, int n
   const float cosS = std::abs(dot(src.ng, ws));
   if (src.kind == kLightVertex) return f * emittedAlong(c, src, ws) * cosS;
   if (s + 1 >= n) return Color(0.0f);
-  return f * evalAt(c, src, ws, directionBetween(src, path[s + 1])) * cosS * fixedTail(c, path, n, s + 1);
+  return f * evalAt(c, src, ws, directionBetween(src, path[s + 1])) * cosS * tailFrom(c, path, n, s + 1, tail);
 }
 
 Color contributionFor(MutationKind kind, const MeasureContext& c, const PathVertex* path, int n, float filmX,
-                      float filmY) {
+                      float filmY, FixedTail* tail) {
   switch (kind) {
-    case MutationKind::Lens: return lensContribution(c, path, n, filmX, filmY);
-    case MutationKind::Caustic: return causticContribution(c, path, n, filmX, filmY);
+    case MutationKind::Lens: return lensContribution(c, path, n, filmX, filmY, tail);
+    case MutationKind::Caustic: return causticContribution(c, path, n, filmX, filmY, tail);
     default: return Color(0.0f);
   }
 }

@@ -1,6 +1,7 @@
 // ERPT accept stage: acceptance probability from the path contributions in the mutation's
 // measure, the Metropolis decision, the step's deposits (equal deposition: every step of
 // every chain deposits e_d), and the chain update.
+#include <algorithm>
 #include <cmath>
 
 #include "erpt/erpt_stages.h"
@@ -11,12 +12,8 @@ namespace erpt {
 namespace {
 
 // Vertices [1, last] of a complete proposal were regenerated; the rest are the chain's.
-int lastRegenerated(MutationKind kind, const PathVertex* path, int n, int connectTo) {
-  if (kind == MutationKind::Caustic) {
-    uint8_t kinds[kMaxChainVertices];
-    for (int j = 0; j < n; ++j) kinds[j] = path[j].kind;
-    return causticSource(kinds, n) - 1;
-  }
+int lastRegenerated(MutationKind kind, const uint8_t* kinds, int n, int connectTo) {
+  if (kind == MutationKind::Caustic) return causticSource(kinds, n) - 1;
   return connectTo > 0 ? connectTo - 1 : n - 1;
 }
 
@@ -39,7 +36,9 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
     writeDeposit(deposits, i, 0, 0, 0, Color(0.0f));
     writeDeposit(deposits, i, 1, 0, 0, Color(0.0f));
     if (chains.stepsLeft[i] == 0) continue;
-    const int n = loadChainPath(chains, chainVertices, i, y);
+    const int n = chains.vertexCount[i];
+    uint8_t kinds[kMaxChainVertices];
+    unpackSignature(chains.signature[i], n, kinds);
     const MutationKind kind = MutationKind(proposals.mutation[i]);
     const size_t base = i * kMaxChainVertices;
     float q = 0;
@@ -47,15 +46,28 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
     Color fz(0.0f);
     float fzLum = 0;
     if (proposals.state[i] == kProposalComplete) {
-      last = lastRegenerated(kind, y, n, proposals.connectTo[i]);
+      // With the fixed tail cached, f only reads the vertices up to where the tail starts.
+      FixedTail tail;
+      if (chains.tailKind[i] == uint8_t(kind)) tail = FixedTail{Color(chains.tailR[i], chains.tailG[i], chains.tailB[i]), true};
+      const int needed = tail.known ? std::min(n, tailStart(kind, kinds, n) + 1) : n;
+      for (int j = 0; j < needed; ++j) y[j] = loadVertex(chainVertices, base + size_t(j));
+      for (int j = needed; j < n; ++j) y[j].kind = kinds[j];
+      last = lastRegenerated(kind, kinds, n, proposals.connectTo[i]);
       for (int j = 0; j < n; ++j) z[j] = j >= 1 && j <= last ? loadVertex(proposalVertices, base + size_t(j)) : y[j];
-      fz = contributionFor(kind, ctx.measure, z, n, proposals.filmX[i], proposals.filmY[i]);
+      fz = contributionFor(kind, ctx.measure, z, n, proposals.filmX[i], proposals.filmY[i], &tail);
+      if (tail.known) {
+        chains.tailR[i] = tail.value.x;
+        chains.tailG[i] = tail.value.y;
+        chains.tailB[i] = tail.value.z;
+        chains.tailKind[i] = uint8_t(kind);
+      }
       const float lz = luminance(fz);
       if (lz > 0 && std::isfinite(lz)) {
         // f(y) in this mutation's measure: cached from the step that made y current, if it
         // used the same mutation (always, under the paper's strategy).
         if (chains.fKind[i] != uint8_t(kind)) {
-          chains.fLum[i] = luminance(contributionFor(kind, ctx.measure, y, n, chains.filmX[i], chains.filmY[i]));
+          chains.fLum[i] =
+              luminance(contributionFor(kind, ctx.measure, y, n, chains.filmX[i], chains.filmY[i], &tail));
           chains.fKind[i] = uint8_t(kind);
         }
         const float ly = chains.fLum[i];
@@ -90,6 +102,8 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
       chains.colorB[i] = fz.z;
       chains.fLum[i] = fzLum;
       chains.fKind[i] = uint8_t(kind);
+      // Another mutation's cached tail may include vertices this one moved.
+      if (chains.tailKind[i] != uint8_t(kind)) chains.tailKind[i] = uint8_t(MutationKind::None);
     }
     if (!ctx.expectedDeposit)
       writeDeposit(deposits, i, 0, chains.filmX[i], chains.filmY[i],

@@ -31,6 +31,7 @@ void loadChainFromSeed(ChainQueue& chains, VertexQueue& chainVertices, size_t sl
   chains.signature[slot] = packSignature(kinds, int(std::min<uint32_t>(n, kMaxChainVertices)));
   chains.fKind[slot] = uint8_t(MutationKind::None);
   chains.fLum[slot] = 0;
+  chains.tailKind[slot] = uint8_t(MutationKind::None);
   chains.filmX[slot] = s.filmX[seed];
   chains.filmY[slot] = s.filmY[seed];
   chains.colorR[slot] = color.x;
