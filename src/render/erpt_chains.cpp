@@ -116,7 +116,9 @@ void ErptChains::step() {
       size_t traced = 0;
       for (size_t i = r.begin; i < r.end; ++i) traced += rays_.tnear[i] <= rays_.tfar[i];
       rays += traced;
-      tracer_.intersect(rays_, hits_, r, RayCoherence::Incoherent);
+      // Later passes carry only the proposals still walking a specular chain: ranges without
+      // any are not handed to Embree (their hits are not read).
+      if (traced > 0) tracer_.intersect(rays_, hits_, r, RayCoherence::Incoherent);
     }, &times_);
     forEachRange("erpt walk", c, kGrain, [&](IndexRange r) {
       walking += stageErptWalk(ctx, chains_, chainVertices_, proposals_, proposalVertices_, rays_, hits_, shadowRays_, r);
@@ -127,7 +129,7 @@ void ErptChains::step() {
     size_t traced = 0;
     for (size_t i = r.begin; i < r.end; ++i) traced += shadowRays_.tnear[i] <= shadowRays_.tfar[i];
     rays += traced;
-    tracer_.occluded(shadowRays_, r);
+    if (traced > 0) tracer_.occluded(shadowRays_, r);
     stageErptResolveConnections(shadowRays_, proposals_, r);
   }, &times_);
   stats_.rays += rays;
