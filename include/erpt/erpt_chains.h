@@ -44,12 +44,7 @@ class ErptChains {
   Film& film_;
   ErptStats& stats_;
   StageTimes& times_;
-  ChainQueue chains_;
-  ProposalQueue proposals_;
-  VertexQueue chainVertices_, proposalVertices_;
-  RayQueue rays_, shadowRays_;
-  HitQueue hits_;
-  DepositQueue deposits_;
+  ErptQueues q_;
   ErptCounters counters_;
   // Chains of the current batch waiting for a slot: (seed index, copies left).
   const SeedStore* batch_ = nullptr;

@@ -32,6 +32,17 @@ struct ErptCounters {
   std::atomic<uint64_t> rejected[kRejectReasonCount] = {};
 };
 
+// Every queue one chain step reads or writes, for `capacity` chain slots (all free).
+struct ErptQueues {
+  ChainQueue chains;
+  ProposalQueue proposals;
+  VertexQueue chainVertices, proposalVertices;
+  RayQueue rays, shadowRays;
+  HitQueue hits;
+  DepositQueue deposits;
+  explicit ErptQueues(size_t capacity);
+};
+
 // Loads the current path of chain `slot` into `out` (kMaxChainVertices entries); returns its
 // vertex count.
 int loadChainPath(const ChainQueue& chains, const VertexQueue& vertices, size_t slot, PathVertex* out);

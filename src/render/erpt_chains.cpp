@@ -17,18 +17,7 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 }  // namespace
 
 ErptChains::ErptChains(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times)
-    : tracer_(tracer), config_(config), film_(film), stats_(stats), times_(times) {
-  const size_t c = config.capacity;
-  chains_.resize(c);
-  proposals_.resize(c);
-  chainVertices_.resize(c * kMaxChainVertices);
-  proposalVertices_.resize(c * kMaxChainVertices);
-  prepareRays(rays_, c);
-  prepareRays(shadowRays_, c);
-  hits_.resize(c);
-  deposits_.resize(c);
-  for (size_t i = 0; i < c; ++i) chains_.stepsLeft[i] = 0;
-}
+    : tracer_(tracer), config_(config), film_(film), stats_(stats), times_(times), q_(config.capacity) {}
 
 bool ErptChains::takesSeed(const SeedStore& store, size_t i, bool excludeDirect) {
   // Eye, one surface vertex, light: a one-bounce path (two vertices: an emitter seen directly).
@@ -72,22 +61,22 @@ void ErptChains::finish() {
 }
 
 bool ErptChains::anyActive() const {
-  for (size_t i = 0; i < chains_.size(); ++i)
-    if (chains_.stepsLeft[i] > 0) return true;
+  for (size_t i = 0; i < q_.chains.size(); ++i)
+    if (q_.chains.stepsLeft[i] > 0) return true;
   return false;
 }
 
 bool ErptChains::refill() {
   auto start = std::chrono::steady_clock::now();
   bool full = true;
-  for (size_t slot = 0; slot < chains_.size(); ++slot) {
-    if (chains_.stepsLeft[slot] > 0) continue;
+  for (size_t slot = 0; slot < q_.chains.size(); ++slot) {
+    if (q_.chains.stepsLeft[slot] > 0) continue;
     if (pendingNext_ >= pending_.size()) {
       full = false;
       break;
     }
     auto& [seed, copies] = pending_[pendingNext_];
-    loadChainFromSeed(chains_, chainVertices_, slot, *batch_, seed, streamKey(config_.seed, kChainStream, chainCounter_++),
+    loadChainFromSeed(q_.chains, q_.chainVertices, slot, *batch_, seed, streamKey(config_.seed, kChainStream, chainCounter_++),
                       config_.chainLength);
     if (--copies == 0) ++pendingNext_;
   }
@@ -104,40 +93,40 @@ void ErptChains::depositInPlace(const SeedStore& store, size_t seed, uint32_t ch
 }
 
 void ErptChains::step() {
-  const size_t c = chains_.size();
+  const size_t c = q_.chains.size();
   const ErptStepContext& ctx = config_.step;
   std::atomic<size_t> walking{0}, rays{0};
   forEachRange("erpt mutate", c, kGrain, [&](IndexRange r) {
-    stageErptMutate(ctx, chains_, chainVertices_, proposals_, rays_, r);
-    for (size_t i = r.begin; i < r.end; ++i) disableRay(shadowRays_, i);
+    stageErptMutate(ctx, q_.chains, q_.chainVertices, q_.proposals, q_.rays, r);
+    for (size_t i = r.begin; i < r.end; ++i) disableRay(q_.shadowRays, i);
   }, &times_);
   for (int pass = 0; pass < kMaxChainVertices; ++pass) {
     forEachRange("erpt intersect", c, kGrain, [&](IndexRange r) {
       size_t traced = 0;
-      for (size_t i = r.begin; i < r.end; ++i) traced += rays_.tnear[i] <= rays_.tfar[i];
+      for (size_t i = r.begin; i < r.end; ++i) traced += q_.rays.tnear[i] <= q_.rays.tfar[i];
       rays += traced;
       // Later passes carry only the proposals still walking a specular chain: ranges without
       // any are not handed to Embree (their hits are not read).
-      if (traced > 0) tracer_.intersect(rays_, hits_, r, RayCoherence::Incoherent);
+      if (traced > 0) tracer_.intersect(q_.rays, q_.hits, r, RayCoherence::Incoherent);
     }, &times_);
     forEachRange("erpt walk", c, kGrain, [&](IndexRange r) {
-      walking += stageErptWalk(ctx, chains_, chainVertices_, proposals_, proposalVertices_, rays_, hits_, shadowRays_, r);
+      walking += stageErptWalk(ctx, q_.chains, q_.chainVertices, q_.proposals, q_.proposalVertices, q_.rays, q_.hits, q_.shadowRays, r);
     }, &times_);
     if (walking.exchange(0) == 0) break;
   }
   forEachRange("erpt connect", c, kGrain, [&](IndexRange r) {
     size_t traced = 0;
-    for (size_t i = r.begin; i < r.end; ++i) traced += shadowRays_.tnear[i] <= shadowRays_.tfar[i];
+    for (size_t i = r.begin; i < r.end; ++i) traced += q_.shadowRays.tnear[i] <= q_.shadowRays.tfar[i];
     rays += traced;
-    if (traced > 0) tracer_.occluded(shadowRays_, r);
-    stageErptResolveConnections(shadowRays_, proposals_, r);
+    if (traced > 0) tracer_.occluded(q_.shadowRays, r);
+    stageErptResolveConnections(q_.shadowRays, q_.proposals, r);
   }, &times_);
   stats_.rays += rays;
   forEachRange("erpt accept", c, kGrain, [&](IndexRange r) {
-    stageErptAccept(ctx, chains_, chainVertices_, proposals_, proposalVertices_, deposits_, counters_, r);
+    stageErptAccept(ctx, q_.chains, q_.chainVertices, q_.proposals, q_.proposalVertices, q_.deposits, counters_, r);
   }, &times_);
   auto start = std::chrono::steady_clock::now();
-  deposited_ += applyDeposits(deposits_, c, ctx.measure.film, film_);
+  deposited_ += applyDeposits(q_.deposits, c, ctx.measure.film, film_);
   times_.add("erpt deposit", secondsSince(start));
   // Counters to stats.
   uint64_t steps = 0;

@@ -8,6 +8,18 @@
 
 namespace erpt {
 
+ErptQueues::ErptQueues(size_t capacity) {
+  chains.resize(capacity);
+  proposals.resize(capacity);
+  chainVertices.resize(capacity * kMaxChainVertices);
+  proposalVertices.resize(capacity * kMaxChainVertices);
+  prepareRays(rays, capacity);
+  prepareRays(shadowRays, capacity);
+  hits.resize(capacity);
+  deposits.resize(capacity);
+  for (size_t i = 0; i < capacity; ++i) chains.stepsLeft[i] = 0;
+}
+
 int loadChainPath(const ChainQueue& chains, const VertexQueue& vertices, size_t slot, PathVertex* out) {
   const int n = chains.vertexCount[slot];
   for (int j = 0; j < n; ++j) out[j] = loadVertex(vertices, slot * kMaxChainVertices + size_t(j));

@@ -1,5 +1,6 @@
 // Path tracer surface stage: emission (MIS-weighted), next-event estimation, BSDF sampling
 // and Russian roulette for every live slot.
+#include "erpt/erpt_path.h"
 #include "erpt/rng.h"
 #include "erpt/stages.h"
 #include "erpt/tracer.h"
@@ -16,23 +17,9 @@ void addRadiance(PathQueue& p, uint32_t id, Color c) {
   p.radianceB[id] += c.z;
 }
 
-void writeVertex(VertexQueue& q, size_t i, Vec3 p, Vec3 ns, Vec3 ng, int32_t material, float u, float v, uint8_t kind,
-                 int32_t parent, int32_t emitter) {
-  q.px[i] = p.x;
-  q.py[i] = p.y;
-  q.pz[i] = p.z;
-  q.nsX[i] = ns.x;
-  q.nsY[i] = ns.y;
-  q.nsZ[i] = ns.z;
-  q.ngX[i] = ng.x;
-  q.ngY[i] = ng.y;
-  q.ngZ[i] = ng.z;
-  q.material[i] = material;
-  q.u[i] = u;
-  q.v[i] = v;
-  q.kind[i] = kind;
-  q.emitter[i] = emitter;
-  q.pdfForward[i] = 0;
+// A seed-recording vertex: the shared vertex layout (erpt_path.h) plus its history link.
+void writeVertex(VertexQueue& q, size_t i, const PathVertex& v, int32_t parent) {
+  storeVertex(q, i, v);
   q.parent[i] = parent;
 }
 
@@ -66,8 +53,12 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
       const float w = emitterHitWeight(prevPdf, ctx.lights.pdfEnvironment());
       addRadiance(paths, id, throughput * env->radiance * w);
       if (recording) {
-        writeVertex(*history.vertices, vertex, environmentPoint(prev, dir), -dir, -dir, -1, 0, 0, kEnvironmentVertex,
-                    paths.lastVertex[id], int32_t(env - ctx.scene.emitters.data()));
+        PathVertex v;
+        v.p = environmentPoint(prev, dir);
+        v.ns = v.ng = -dir;
+        v.kind = kEnvironmentVertex;
+        v.emitter = int32_t(env - ctx.scene.emitters.data());
+        writeVertex(*history.vertices, vertex, v, paths.lastVertex[id]);
         slots.emitWeight[k] = w;
         Color e = throughput * env->radiance;
         slots.emitR[k] = e.x;
@@ -79,9 +70,16 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     const SurfacePoint sp = surfaceAt(ctx.scene.mesh, hits.primID[k], hits.u[k], hits.v[k]);
     const Material& m = ctx.scene.materials[sp.material];
     if (recording) {
-      writeVertex(*history.vertices, vertex, sp.position, sp.shading.n, sp.geometricNormal, sp.material, sp.u, sp.v,
-                  m.isPureSpecular() ? kSpecularVertex : kNonSpecularVertex, paths.lastVertex[id],
-                  ctx.scene.mesh.emitter[sp.triangle]);
+      PathVertex v;
+      v.p = sp.position;
+      v.ns = sp.shading.n;
+      v.ng = sp.geometricNormal;
+      v.material = sp.material;
+      v.u = sp.u;
+      v.v = sp.v;
+      v.kind = m.isPureSpecular() ? kSpecularVertex : kNonSpecularVertex;
+      v.emitter = ctx.scene.mesh.emitter[sp.triangle];
+      writeVertex(*history.vertices, vertex, v, paths.lastVertex[id]);
       paths.lastVertex[id] = int32_t(vertex);
     }
     const Color le = ctx.lights.emitted(sp.triangle, -dir);

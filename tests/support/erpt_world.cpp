@@ -36,18 +36,6 @@ int ErptWorld::seedPath(size_t seed, PathVertex* out) const {
   return n;
 }
 
-ChainQueues::ChainQueues(size_t capacity) {
-  chains.resize(capacity);
-  proposals.resize(capacity);
-  chainVertices.resize(capacity * kMaxChainVertices);
-  proposalVertices.resize(capacity * kMaxChainVertices);
-  prepareRays(rays, capacity);
-  prepareRays(shadowRays, capacity);
-  hits.resize(capacity);
-  deposits.resize(capacity);
-  for (size_t i = 0; i < capacity; ++i) chains.stepsLeft[i] = 0;
-}
-
 void ChainQueues::propose(const ErptWorld& world, const ErptStepContext& ctx) {
   const IndexRange all{0, chains.size()};
   stageErptMutate(ctx, chains, chainVertices, proposals, rays, all);

@@ -30,16 +30,10 @@ struct ErptWorld {
   int seedPath(size_t seed, PathVertex* out) const;
 };
 
-// Queues for `capacity` chains, and one full chain step run stage by stage (as ErptChains
+// The library's chain queues, and one chain step run stage by stage (as ErptChains
 // does) so tests can look between the stages.
-struct ChainQueues {
-  ChainQueue chains;
-  ProposalQueue proposals;
-  VertexQueue chainVertices, proposalVertices;
-  RayQueue rays, shadowRays;
-  HitQueue hits;
-  DepositQueue deposits;
-  explicit ChainQueues(size_t capacity);
+struct ChainQueues : ErptQueues {
+  using ErptQueues::ErptQueues;
   // mutate -> (intersect -> walk)* -> connect; stops before accept.
   void propose(const ErptWorld& world, const ErptStepContext& ctx);
 };
