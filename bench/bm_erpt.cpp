@@ -55,8 +55,7 @@ struct ErptFixture {
     deposits.resize(kSlots);
     for (size_t slot = 0, i = 0; slot < kSlots; ++i)
       if (seeds.seeds.vertexCount[i] <= uint32_t(kMaxChainVertices) && luminance(seeds.contribution(i)) > 0)
-        loadChainFromSeed(chains, chainVertices, slot++, seeds, i, streamKey(1, i, 0), 1 << 30);
-    ctx.depositEnergy = 0.01f;
+        loadChainFromSeed(chains, chainVertices, slot++, seeds, i, streamKey(1, i, 0), 1 << 30, 0.01f);
     const IndexRange all{0, kSlots};
     stageErptMutate(ctx, chains, chainVertices, proposals, rays, all);
     for (size_t i = 0; i < kSlots; ++i) disableRay(shadowRays, i);
@@ -185,7 +184,10 @@ void BM_ErptDeposit(benchmark::State& state) {
   ErptCounters counters;
   stageErptAccept(f.ctx, chains, vertices, proposals, f.proposalVertices, deposits, counters, {0, kSlots});
   Film film(kSize, kSize);
-  for (auto _ : state) benchmark::DoNotOptimize(applyDeposits(deposits, kSlots, f.density, film));
+  for (auto _ : state) {
+    DepositFilters filters;
+    benchmark::DoNotOptimize(applyDeposits(chains, proposals, deposits, IndexRange{0, kSlots}, f.density, film, filters));
+  }
   setRate(state, "deposits/s", kSlots);
 }
 
@@ -195,7 +197,7 @@ void BM_ErptChainLoop(benchmark::State& state) {
   ErptFixture& f = fixture();
   ThreadPool pool(int(state.range(0)));
   ErptChains::Config config{f.ctx, 100, 7, false, kSlots};
-  config.step.depositEnergy = float(f.energy / (kSize * kSize * 16.0));
+  config.depositEnergy = f.energy / (kSize * kSize * 16.0);
   uint64_t mutations = 0, rays = 0;
   double embree = 0, total = 0;
   for (auto _ : state) {

@@ -20,23 +20,30 @@ class ErptChains {
     uint64_t seed = 0;
     bool excludeDirect = false;  // leave paths of at most one bounce to the direct pass
     size_t capacity = 1024;      // chain slots
+    double depositEnergy = 0;    // e_d (equal deposition)
+    uint32_t maxConsecutive = 0; // consecutive-sample filter (0: off)
+    bool tallyProposals = false; // proposed-mutations filter: count proposals per pixel
   };
   ErptChains(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times);
 
   // Whether a seed is ERPT's to redistribute (not left to the direct-lighting pass).
   static bool takesSeed(const SeedStore& store, size_t i, bool excludeDirect);
-  // Starts floor(U + e / (m e_d)) chains for each seed of the batch and runs steps whenever
-  // the queue is full; on return every chain of the batch is in the queue (or done).
+  // Starts floor(U + e / (m e_d)) chains for each seed of the batch (detailed balance: one,
+  // depositing e / m per step) and runs steps whenever the queue is full; on return every
+  // chain of the batch is in the queue (or done).
   void consume(const SeedStore& batch);
   // Runs the remaining chains to the end.
   void finish();
   // Energy added to the film so far (luminance), for tests.
   double depositedEnergy() const { return deposited_; }
+  // Complete proposals per pixel (when Config::tallyProposals).
+  const std::vector<uint32_t>& proposalTally() const { return tally_; }
 
  private:
   bool refill();  // true when every slot is busy afterwards
   void step();
   void depositInPlace(const SeedStore& store, size_t seed, uint32_t chains);
+  float energyPerStep(const SeedStore& store, size_t seed) const;
   bool anyActive() const;
 
   const Tracer& tracer_;
@@ -52,6 +59,8 @@ class ErptChains {
   size_t pendingNext_ = 0;
   uint64_t seedCounter_ = 0, chainCounter_ = 0;
   double deposited_ = 0;
+  std::vector<uint32_t> tally_;
+  DepositFilters filters_;
 };
 
 }  // namespace erpt

@@ -10,6 +10,12 @@ namespace erpt {
 // whose path the kind cannot mutate stays where it is).
 enum class MutationStrategy { Paper, Mixed, LensOnly, CausticOnly };
 
+// How a seed's energy flows (paper section 3). Equal deposition (3.2): floor(U + e / (m e_d))
+// chains of m steps, each step depositing e_d at the chain's current path. Detailed balance
+// (3.1, the paper's baseline): the seed x is mutated m times, never moves, and each mutation
+// y_i receives e q(x -> y_i) / m; what did not flow stays at x.
+enum class FlowRule { EqualDeposition, DetailedBalance };
+
 struct ErptSettings {
   int mutationsPerPixel = 100;  // M: sets e_d = n e_ave / M
   int chainLength = 100;        // m: steps of every chain
@@ -18,6 +24,14 @@ struct ErptSettings {
   int pilotSpp = 4;             // samples per pixel of the pilot pass estimating e_ave
   bool expectedDeposit = false; // deposit (1 - q) at y and q at z instead of the paper's rule
   int directSamples = 64;       // >= 1: one-bounce paths by a direct-lighting pass (N spp); -1: ERPT does all
+  FlowRule flow = FlowRule::EqualDeposition;
+  // Noise filters of section 4.4 (biased; off by default).
+  int pmFilterRadius = -1;      // >= 0: proposed-mutations filter, box of (2r+1)^2 pixels; -1: off
+  int maxConsecutive = 0;       // >= 1: consecutive-sample filter, N deposits in a row on a pixel; 0: off
+  // Set by time-budgeted rendering (render.h), which runs ERPT in passes: a known e_ave (the
+  // pilot runs once) and a fixed e_d (so every pass keeps the configured mutations per seed).
+  double knownPilotEnergy = -1;  // >= 0: skip the pilot pass
+  double knownDepositEnergy = 0; // > 0: e_d, instead of n e_ave / M
 };
 
 struct ErptStats {
@@ -32,6 +46,8 @@ struct ErptStats {
   double pilotEnergy = 0;       // e_ave
   double depositEnergy = 0;     // e_d
   double erptSeconds = 0;       // time in the chain loop
+  uint64_t discardedDeposits = 0;   // thrown away by the consecutive-sample filter
+  double discardedEnergy = 0;       // their luminance
 };
 
 }  // namespace erpt

@@ -6,8 +6,10 @@
 #pragma once
 
 #include <atomic>
+#include <vector>
 
 #include "erpt/erpt_path.h"
+#include "erpt/erpt_settings.h"
 #include "erpt/film.h"
 #include "erpt/seeds.h"
 
@@ -17,9 +19,12 @@ struct ErptStepContext {
   MeasureContext measure;
   MutationStrategy strategy = MutationStrategy::Paper;
   float lensRadius = 4.5f;       // half the side of the film square lens perturbations move in
-  float depositEnergy = 0;       // e_d
   bool expectedDeposit = false;  // deposit (1 - q) at y and q at z instead of all at the chain's path
+  FlowRule flow = FlowRule::EqualDeposition;  // detailed balance: chains never move, deposits as expected values
 };
+
+// A chain that has not deposited yet (consecutive-sample filter).
+constexpr uint32_t kNoPixel = 0xffffffffu;
 
 // Random dimensions of one chain step (stream key = the chain's key, dimension =
 // step * kStepDims + use). Direction perturbations at vertex j use kDimPerturb + 2j, +1.
@@ -48,9 +53,10 @@ struct ErptQueues {
 int loadChainPath(const ChainQueue& chains, const VertexQueue& vertices, size_t slot, PathVertex* out);
 
 // Starts a chain in `slot` at seed `seed` of `store`: its vertices, film position, colour
-// rgb(X_f) / lum(X_f), random stream `key` and `chainLength` steps to go.
+// rgb(X_f) / lum(X_f), random stream `key`, `chainLength` steps to go, each depositing
+// `energyPerStep` (luminance).
 void loadChainFromSeed(ChainQueue& chains, VertexQueue& chainVertices, size_t slot, const SeedStore& store,
-                       size_t seed, uint64_t key, uint32_t chainLength);
+                       size_t seed, uint64_t key, uint32_t chainLength, float energyPerStep);
 
 // Chooses each active chain's mutation and starts it: the first ray of the proposal in `rays`
 // (lens: the eye ray through the perturbed film position; caustic: the perturbed ray leaving
@@ -75,8 +81,24 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
                      ProposalQueue& proposals, const VertexQueue& proposalVertices, DepositQueue& deposits,
                      ErptCounters& counters, IndexRange range);
 
-// Adds the deposit records of slots [0, count) to the film in slot order, splatting each over
-// the pixels the filter reaches. Returns the total energy added (luminance), for tests.
-double applyDeposits(const DepositQueue& deposits, size_t count, const FilmDensity& density, Film& film);
+// The deposit stage's noise filters (paper section 4.4; both biased, both off by default).
+struct DepositFilters {
+  // Consecutive-sample filter: once a chain's path has stayed on one pixel for this many steps
+  // in a row, its deposits on that pixel are thrown away until it leaves. 0: off.
+  uint32_t maxConsecutive = 0;
+  // Proposed-mutations filter: when set, every complete proposal adds 1 to the pixel its film
+  // position falls in (width x height entries); the image is rescaled at the end
+  // (noise_filters.h).
+  std::vector<uint32_t>* proposalTally = nullptr;
+  uint64_t discarded = 0;      // deposit records thrown away
+  double discardedEnergy = 0;  // their luminance
+};
+
+// Adds the deposit records of the slots in `range` to the film in slot order, splatting each
+// over the pixels the filter reaches, after the noise filters (which update the chains' run
+// state). Sequential on purpose (the film sums stay in a fixed order). Returns the total
+// energy added (luminance).
+double applyDeposits(ChainQueue& chains, const ProposalQueue& proposals, const DepositQueue& deposits, IndexRange range,
+                     const FilmDensity& density, Film& film, DepositFilters& filters);
 
 }  // namespace erpt

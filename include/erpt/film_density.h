@@ -25,6 +25,8 @@ class FilmDensity {
   // weights sum to 1 wherever density(x, y) > 0.
   template <class Add>
   void splat(float x, float y, Add&& add) const;
+  int width() const { return width_; }
+  int height() const { return height_; }
 
  private:
   float axis(float x, int size) const;  // sum over pixels along one axis of the normalized 1D filter

@@ -148,7 +148,10 @@
   F(float, filmY, "y")                                                       \
   F(float, colorR, "rgb(f) / lum(f) of the current path, red")               \
   F(float, colorG, "green")                                                  \
-  F(float, colorB, "blue")
+  F(float, colorB, "blue")                                                   \
+  F(float, energy, "luminance each step deposits (e_d; detailed balance: e / m)") \
+  F(uint32_t, runPixel, "consecutive-sample filter: pixel of the chain's last deposits") \
+  F(uint32_t, runLength, "how many steps in a row the chain has been on runPixel")
 
 // The proposal of one chain for the current step (same slot as the chain). Regenerated
 // vertices are written to the proposal's VertexQueue rows of that slot; the others are the

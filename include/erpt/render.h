@@ -4,6 +4,8 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "erpt/erpt_settings.h"
 #include "erpt/image_io.h"
@@ -28,6 +30,12 @@ struct RenderSettings {
   // then cleared (streaming, so memory stays bounded). Unset: the store keeps all seeds.
   std::function<void(SeedStore&)> seedSink;
   ErptSettings erpt;
+  // > 0: render for this many seconds of wall-clock time instead of `spp` samples per pixel
+  // (see render()). The image then depends on the machine's speed.
+  double timeBudget = 0;
+  // Time-budgeted renders: called after every pass with the image so far, the render's
+  // seconds so far (not counting this call) and its samples per pixel so far.
+  std::function<void(const RgbImage&, double seconds, int spp)> onPass;
 };
 
 struct RenderStats {
@@ -37,6 +45,11 @@ struct RenderStats {
   uint64_t invalidSamples = 0;  // NaN/Inf estimates, dropped and counted
   StageTimes stages;
   ErptStats erpt;
+  int spp = 0;  // samples per pixel rendered (time-budgeted renders choose it)
+  int passes = 0;
+  // Images the integrator makes besides the result, by name (ERPT's proposed-mutations filter:
+  // "raw", the unfiltered image, and "proposals", the tally); the CLI writes OUT-name.exr.
+  std::vector<std::pair<std::string, RgbImage>> extraImages;
 };
 
 // Settings with the scene's values filled in where the caller left them open.
@@ -44,6 +57,15 @@ RenderSettings resolveSettings(const Scene& scene, RenderSettings settings);
 // Names of the integrators render() knows.
 const char* integratorNames();
 // Throws UsageError for an unknown integrator.
+//
+// With a time budget the integrator runs in passes, each an independent render with its own
+// random stream, and the image is their average weighted by samples per pixel (each pass is
+// unbiased, so the average is). Passes start at 1 spp and double while the time left allows,
+// judged by the last pass's time per sample; no pass is started that is predicted to end
+// after the budget, so the render ends a little before it (or after it, if even one sample
+// per pixel takes longer). ERPT keeps its configured ratio of mutations to seeds in every
+// pass: e_ave comes from one pilot pass, e_d = spp e_ave / M from the configured spp, and the
+// direct pass gets directSamples x (pass spp) / spp samples per pixel.
 RgbImage render(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
 
 }  // namespace erpt

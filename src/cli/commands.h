@@ -20,7 +20,9 @@ struct RenderArgs {
   std::vector<std::string> defines;
   bool quiet = false;
   ErptSettings erpt;
-  std::string strategy = "paper", deposit = "paper";
+  std::string strategy = "paper", deposit = "paper", flow = "equal-deposition";
+  bool pmFilter = false;
+  double time = 0;
 };
 
 struct InfoArgs {

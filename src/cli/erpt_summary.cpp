@@ -20,6 +20,10 @@ void printErptSummary(const RenderStats& stats) {
                (unsigned long long)lens, pct(e.accepted[size_t(MutationKind::Lens)], lens),
                (unsigned long long)caustic, pct(e.accepted[size_t(MutationKind::Caustic)], caustic),
                (unsigned long long)e.proposed[size_t(MutationKind::None)]);
+  if (e.discardedDeposits > 0)
+    std::fprintf(stderr, "erpt: consecutive-sample filter threw away %llu deposits (%.3g%% of the deposited energy)\n",
+                 (unsigned long long)e.discardedDeposits,
+                 pct(uint64_t(e.discardedEnergy * 1e6), uint64_t((e.discardedEnergy + double(e.deposits) * e.depositEnergy) * 1e6)));
   std::fprintf(stderr, "erpt: rejected:");
   for (int r = kRejectNoMutation; r < kRejectReasonCount; ++r)
     std::fprintf(stderr, "%s %s %llu", r == kRejectNoMutation ? "" : ",", rejectReasonName(RejectReason(r)),

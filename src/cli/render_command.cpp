@@ -49,6 +49,15 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
       ->check(CLI::Range(1, 1 << 16));
   cmd->add_option("--deposit", a.deposit, "ERPT: paper (all of a step's energy at the chain's path) or expected ((1-q) at y, q at z)")
       ->check(CLI::IsMember({"paper", "expected"}));
+  cmd->add_option("--time", a.time, "Render for this many seconds instead of --spp samples per pixel (passes of growing spp; the image then depends on the machine's speed)")
+      ->check(CLI::Range(1e-3, 1e7));
+  cmd->add_option("--flow", a.flow, "ERPT flow rule: equal-deposition (default, paper section 3.2) or detailed-balance (section 3.1: each seed is mutated --chain-length times and never moves)")
+      ->check(CLI::IsMember({"equal-deposition", "detailed-balance"}));
+  cmd->add_flag("--pm-filter", a.pmFilter, "ERPT: proposed-mutations noise filter (paper 4.4; biased); also writes OUT-raw.exr (unfiltered) and OUT-proposals.exr (the tally)");
+  cmd->add_option("--pm-filter-radius", e.pmFilterRadius, "ERPT: box radius of the proposed-mutations filter (3 = the paper's 7x7); implies --pm-filter")
+      ->check(CLI::Range(0, 1000));
+  cmd->add_option("--max-consecutive", e.maxConsecutive, "ERPT: consecutive-sample noise filter (paper 4.4; biased): a chain's deposits are dropped after N in a row on one pixel (paper: 10-20; 0 = off)")
+      ->check(CLI::Range(0, 1 << 30));
   cmd->add_option("--direct-samples", e.directSamples, "ERPT: one-bounce paths by a direct-lighting pass with N samples per pixel (default 64); -1: ERPT renders them too, as in the paper")
       ->check(CLI::Range(-1, 1 << 16));
 }
@@ -82,6 +91,9 @@ int runRender(const RenderArgs& a) {
                     : a.strategy == "caustic" ? MutationStrategy::CausticOnly
                                               : MutationStrategy::Paper;
   s.erpt.expectedDeposit = a.deposit == "expected";
+  s.erpt.flow = a.flow == "detailed-balance" ? FlowRule::DetailedBalance : FlowRule::EqualDeposition;
+  if (a.pmFilter && s.erpt.pmFilterRadius < 0) s.erpt.pmFilterRadius = 3;
+  s.timeBudget = a.time;
   if (!a.filter.empty()) {
     s.filterSet = true;
     s.filter = a.filter == "box" ? FilterKind::Box : a.filter == "tent" ? FilterKind::Tent : FilterKind::Gaussian;
@@ -96,11 +108,20 @@ int runRender(const RenderArgs& a) {
 
   fs::path png = out;
   png.replace_extension(".png");
+  // Extra images first: the main image appears last, once everything else is written.
+  for (const auto& [name, extra] : stats.extraImages) {
+    fs::path p = out;
+    p.replace_filename(out.stem().string() + "-" + name + ".exr");
+    writeImageAtomic(p.string(), extra);
+    if (name != "proposals") writePngAtomic(fs::path(p).replace_extension(".png").string(), extra);  // counts: EXR only
+  }
   writeImageAtomic(out.string(), image);
   writePngAtomic(png.string(), image);
   RenderSettings r = resolveSettings(scene, s);
-  std::fprintf(stderr, "%s: %dx%d, %d spp, %llu samples in %.2f s, %.2f Mrays/s, %llu invalid samples dropped -> %s, %s\n",
-               s.integrator.c_str(), r.width, r.height, r.spp, (unsigned long long)stats.samples, stats.seconds,
+  std::fprintf(stderr, "%s: %dx%d, %d spp%s, %llu samples in %.2f s, %.2f Mrays/s, %llu invalid samples dropped -> %s, %s\n",
+               s.integrator.c_str(), r.width, r.height, stats.spp,
+               stats.passes > 1 ? (" in " + std::to_string(stats.passes) + " passes").c_str() : "",
+               (unsigned long long)stats.samples, stats.seconds,
                stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0,
                (unsigned long long)stats.invalidSamples, out.string().c_str(), png.string().c_str());
   if (s.integrator == "erpt") printErptSummary(stats);

@@ -17,7 +17,19 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 }  // namespace
 
 ErptChains::ErptChains(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times)
-    : tracer_(tracer), config_(config), film_(film), stats_(stats), times_(times), q_(config.capacity) {}
+    : tracer_(tracer), config_(config), film_(film), stats_(stats), times_(times), q_(config.capacity) {
+  filters_.maxConsecutive = config.maxConsecutive;
+  if (config.tallyProposals) {
+    tally_.assign(size_t(film.width()) * size_t(film.height()), 0);
+    filters_.proposalTally = &tally_;
+  }
+}
+
+float ErptChains::energyPerStep(const SeedStore& store, size_t seed) const {
+  if (config_.step.flow == FlowRule::DetailedBalance)
+    return float(double(luminance(store.contribution(seed))) / config_.chainLength);
+  return float(config_.depositEnergy);
+}
 
 bool ErptChains::takesSeed(const SeedStore& store, size_t i, bool excludeDirect) {
   // Eye, one surface vertex, light: a one-bounce path (two vertices: an emitter seen directly).
@@ -28,15 +40,16 @@ void ErptChains::consume(const SeedStore& batch) {
   batch_ = &batch;
   pending_.clear();
   pendingNext_ = 0;
-  const double ed = config_.step.depositEnergy;
+  const double ed = config_.depositEnergy;
   const double m = config_.chainLength;
+  const bool detailedBalance = config_.step.flow == FlowRule::DetailedBalance;
   for (size_t i = 0; i < batch.size(); ++i) {
     if (!takesSeed(batch, i, config_.excludeDirect)) continue;
     const float e = luminance(batch.contribution(i));
     if (!(e > 0) || !std::isfinite(e)) continue;
     ++stats_.seeds;
     const float u = uniformFloat(streamKey(config_.seed, kSeedStream, seedCounter_++), 0);
-    const uint32_t copies = chainsForSeed(e, m, ed, u);
+    const uint32_t copies = detailedBalance ? 1 : chainsForSeed(e, m, ed, u);
     if (copies == 0) continue;
     stats_.chains += copies;
     if (batch.seeds.vertexCount[i] > uint32_t(kMaxChainVertices)) {
@@ -77,7 +90,7 @@ bool ErptChains::refill() {
     }
     auto& [seed, copies] = pending_[pendingNext_];
     loadChainFromSeed(q_.chains, q_.chainVertices, slot, *batch_, seed, streamKey(config_.seed, kChainStream, chainCounter_++),
-                      config_.chainLength);
+                      config_.chainLength, energyPerStep(*batch_, seed));
     if (--copies == 0) ++pendingNext_;
   }
   times_.add("erpt refill", secondsSince(start));
@@ -86,7 +99,7 @@ bool ErptChains::refill() {
 
 void ErptChains::depositInPlace(const SeedStore& store, size_t seed, uint32_t chains) {
   const Color c = store.contribution(seed);
-  const Color energy = c / luminance(c) * float(config_.step.depositEnergy * config_.chainLength * chains);
+  const Color energy = c / luminance(c) * float(double(energyPerStep(store, seed)) * config_.chainLength * chains);
   deposited_ += luminance(energy);
   config_.step.measure.film.splat(store.seeds.filmX[seed], store.seeds.filmY[seed],
                                   [&](uint32_t pixel, float w) { film_.add(pixel, energy * w); });
@@ -126,7 +139,7 @@ void ErptChains::step() {
     stageErptAccept(ctx, q_.chains, q_.chainVertices, q_.proposals, q_.proposalVertices, q_.deposits, counters_, r);
   }, &times_);
   auto start = std::chrono::steady_clock::now();
-  deposited_ += applyDeposits(q_.deposits, c, ctx.measure.film, film_);
+  deposited_ += applyDeposits(q_.chains, q_.proposals, q_.deposits, IndexRange{0, c}, ctx.measure.film, film_, filters_);
   times_.add("erpt deposit", secondsSince(start));
   // Counters to stats.
   uint64_t steps = 0;
@@ -137,6 +150,8 @@ void ErptChains::step() {
   }
   for (int r = 0; r < kRejectReasonCount; ++r) stats_.rejected[r] = counters_.rejected[r];
   stats_.mutations = steps;
+  stats_.discardedDeposits = filters_.discarded;
+  stats_.discardedEnergy = filters_.discardedEnergy;
   stats_.deposits = steps;
 }
 

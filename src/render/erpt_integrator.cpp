@@ -17,6 +17,7 @@
 #include "direct_integrator.h"
 #include "erpt/rng.h"
 #include "erpt/erpt_chains.h"
+#include "erpt/noise_filters.h"
 #include "path_integrator.h"
 #include "render_setup.h"
 
@@ -33,10 +34,17 @@ void validate(const ErptSettings& o) {
   if (o.pilotSpp < 1) throw UsageError("--pilot-spp must be at least 1");
   if (o.directSamples == 0 || o.directSamples < -1)
     throw UsageError("--direct-samples must be -1 (ERPT renders direct light too) or at least 1");
+  if (o.pmFilterRadius < -1 || o.pmFilterRadius > 1000) throw UsageError("--pm-filter-radius must be in [0, 1000] pixels");
+  if (o.maxConsecutive < 0) throw UsageError("--max-consecutive must be at least 1 (or 0: off)");
+  if (o.maxConsecutive > 0 && o.flow == FlowRule::DetailedBalance)
+    throw UsageError("--max-consecutive needs moving chains: it does not apply to --flow detailed-balance");
 }
 
+}  // namespace
+
 // e_ave: mean energy per pixel sample of the seeds ERPT will redistribute.
-double pilotEnergy(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+double erptPilotEnergy(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+  validate(s.erpt);
   RenderSettings pilot = s;
   pilot.spp = s.erpt.pilotSpp;
   pilot.seed = streamKey(s.seed, kPilotStream, 0);
@@ -58,31 +66,31 @@ double pilotEnergy(const Scene& scene, const RenderSettings& s, RenderStats& sta
   return energy / (double(s.width) * s.height * pilot.spp);
 }
 
-}  // namespace
-
 RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
   const ErptSettings& o = s.erpt;
   validate(o);
   ErptStats& es = stats.erpt;
-  es.pilotEnergy = pilotEnergy(scene, s, stats);
-  es.depositEnergy = double(s.spp) * es.pilotEnergy / o.mutationsPerPixel;
+  es.pilotEnergy = o.knownPilotEnergy >= 0 ? o.knownPilotEnergy : erptPilotEnergy(scene, s, stats);
+  es.depositEnergy = o.knownDepositEnergy > 0 ? o.knownDepositEnergy : double(s.spp) * es.pilotEnergy / o.mutationsPerPixel;
+  const bool detailedBalance = o.flow == FlowRule::DetailedBalance;
 
   RenderSetup setup(scene, s);
   FilmDensity density(setup.filter, s.width, s.height);
   ErptChains::Config config{
       ErptStepContext{MeasureContext{scene, setup.lights, setup.camera, density}, o.strategy, o.lensRadius,
-                      float(es.depositEnergy), o.expectedDeposit},
+                      o.expectedDeposit, o.flow},
       uint32_t(o.chainLength), s.seed, o.directSamples > 0,
       // Chain slots: 1024 per thread keeps a step's working set (chain and proposal vertices,
       // ~1.4 MB) in cache; larger queues measured up to 2x slower on this machine.
-      size_t(1024) * size_t(std::max(1, setup.pool.threads()))};
+      size_t(1024) * size_t(std::max(1, setup.pool.threads())), es.depositEnergy, uint32_t(o.maxConsecutive),
+      o.pmFilterRadius >= 0};
   ErptChains chains(setup.tracer, config, setup.film, es, stats.stages);
 
   RenderSettings main = s;
   SeedStore store;
   main.seeds = &store;
   double inChains = 0;
-  if (es.depositEnergy > 0) {
+  if (es.depositEnergy > 0 || detailedBalance) {
     main.seedSink = [&](SeedStore& batch) {
       auto t = std::chrono::steady_clock::now();
       chains.consume(batch);
@@ -100,6 +108,18 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
   stats.invalidSamples = seedStats.invalidSamples;
   for (const auto& [name, seconds] : seedStats.stages.all()) stats.stages.add("seed " + name, seconds);
   RgbImage image = setup.film.resolve(double(s.spp));
+  if (o.pmFilterRadius >= 0) {
+    // The filter rescales what the chains deposited (not the direct pass); the unfiltered
+    // image and the tally are kept for the user to compare.
+    RgbImage filtered = applyProposalFilter(image, chains.proposalTally(), o.pmFilterRadius);
+    stats.extraImages.emplace_back("raw", std::move(image));
+    RgbImage tally;
+    tally.width = s.width;
+    tally.height = s.height;
+    for (uint32_t t : chains.proposalTally()) tally.pixels.push_back(Color(float(t)));
+    stats.extraImages.emplace_back("proposals", std::move(tally));
+    image = std::move(filtered);
+  }
 
   if (o.directSamples > 0) {
     RenderSettings direct = s;
@@ -108,6 +128,9 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
     RenderStats directStats;
     RgbImage d = renderDirect(scene, direct, directStats);
     for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] += d.pixels[i];
+    for (auto& [name, extra] : stats.extraImages)
+      if (name == "raw")
+        for (size_t i = 0; i < extra.pixels.size(); ++i) extra.pixels[i] += d.pixels[i];
     stats.rays += directStats.rays;
     for (const auto& [name, seconds] : directStats.stages.all()) stats.stages.add("direct " + name, seconds);
   }

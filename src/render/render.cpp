@@ -1,12 +1,122 @@
 #include "erpt/render.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "direct_integrator.h"
+#include "erpt/rng.h"
 #include "erpt_integrator.h"
 #include "path_integrator.h"
 
 namespace erpt {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr uint64_t kPassStream = 0x7061737365ull;
+
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+RgbImage renderOnce(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+  if (s.integrator == "path") return renderPath(scene, s, stats);
+  if (s.integrator == "erpt") return renderErpt(scene, s, stats);
+  if (s.integrator == "direct") return renderDirect(scene, s, stats);
+  throw UsageError("unknown integrator '" + s.integrator + "' (available: " + integratorNames() + ")");
+}
+
+void addErptStats(ErptStats& to, const ErptStats& from) {
+  to.seeds += from.seeds;
+  to.chains += from.chains;
+  to.mutations += from.mutations;
+  for (int k = 0; k < 3; ++k) to.proposed[k] += from.proposed[k], to.accepted[k] += from.accepted[k];
+  for (size_t r = 0; r < std::size(to.rejected); ++r) to.rejected[r] += from.rejected[r];
+  to.deposits += from.deposits;
+  to.unhandledSeeds += from.unhandledSeeds;
+  to.rays += from.rays;
+  to.pilotEnergy = from.pilotEnergy;
+  to.depositEnergy = from.depositEnergy;
+  to.erptSeconds += from.erptSeconds;
+  to.discardedDeposits += from.discardedDeposits;
+  to.discardedEnergy += from.discardedEnergy;
+}
+
+// Running sum of pass images weighted by their samples per pixel.
+struct WeightedSum {
+  std::vector<double> sum;
+  int width = 0, height = 0;
+  void add(const RgbImage& img, double weight) {
+    if (sum.empty()) width = img.width, height = img.height, sum.assign(img.pixels.size() * 3, 0.0);
+    for (size_t i = 0; i < img.pixels.size(); ++i)
+      for (int c = 0; c < 3; ++c) sum[3 * i + size_t(c)] += weight * double(img.pixels[i][c]);
+  }
+  RgbImage mean(double totalWeight) const {
+    RgbImage out;
+    out.width = width;
+    out.height = height;
+    out.pixels.resize(sum.size() / 3);
+    for (size_t i = 0; i < out.pixels.size(); ++i)
+      out.pixels[i] = Color(float(sum[3 * i] / totalWeight), float(sum[3 * i + 1] / totalWeight),
+                            float(sum[3 * i + 2] / totalWeight));
+    return out;
+  }
+};
+
+RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats& stats, Clock::time_point start) {
+  if (!(s.timeBudget > 0) || s.timeBudget > 1e7) throw UsageError("--time must be in (0, 10000000] seconds");
+  RenderSettings pass = s;
+  pass.timeBudget = 0;
+  pass.onPass = nullptr;
+  pass.progress = nullptr;
+  if (s.integrator == "erpt") {
+    // One pilot for all passes (it is independent of every one of them), and e_d from the
+    // configured spp, so each pass runs the configured mutations per seed.
+    pass.erpt.knownPilotEnergy = erptPilotEnergy(scene, s, stats);
+    pass.erpt.knownDepositEnergy = double(s.spp) * pass.erpt.knownPilotEnergy / std::max(1, s.erpt.mutationsPerPixel);
+  }
+  WeightedSum image;
+  std::vector<WeightedSum> extras;
+  double notRendering = 0;  // time spent in onPass
+  int passSpp = 1;
+  for (int p = 0;; ++p) {
+    pass.spp = passSpp;
+    pass.seed = p == 0 ? s.seed : streamKey(s.seed, kPassStream, uint64_t(p));
+    if (s.integrator == "erpt" && s.erpt.directSamples > 0)
+      pass.erpt.directSamples = std::max(1, int(std::lround(double(s.erpt.directSamples) * passSpp / s.spp)));
+    const Clock::time_point passStart = Clock::now();
+    RenderStats ps;
+    const RgbImage img = renderOnce(scene, pass, ps);
+    const double passSeconds = secondsSince(passStart);
+    image.add(img, passSpp);
+    extras.resize(ps.extraImages.size());
+    for (size_t k = 0; k < ps.extraImages.size(); ++k) extras[k].add(ps.extraImages[k].second, passSpp);
+    if (p == 0)
+      for (const auto& [name, extra] : ps.extraImages) stats.extraImages.emplace_back(name, RgbImage{});
+    stats.samples += ps.samples;
+    stats.rays += ps.rays;
+    stats.invalidSamples += ps.invalidSamples;
+    for (const auto& [name, seconds] : ps.stages.all()) stats.stages.add(name, seconds);
+    addErptStats(stats.erpt, ps.erpt);
+    stats.spp += passSpp;
+    stats.passes = p + 1;
+
+    const double elapsed = secondsSince(start) - notRendering;
+    if (s.onPass) {
+      const Clock::time_point t = Clock::now();
+      s.onPass(image.mean(stats.spp), elapsed, stats.spp);
+      notRendering += secondsSince(t);
+    }
+    if (s.progress) s.progress(std::min(1.0, elapsed / s.timeBudget));
+    const double perSample = passSeconds / passSpp;  // includes the pass's fixed costs: cautious
+    const double fits = (s.timeBudget - elapsed) / perSample;
+    if (!(fits >= 1)) break;
+    passSpp = int(std::min({2.0 * passSpp, std::floor(fits), double(1 << 24)}));
+  }
+  for (size_t k = 0; k < extras.size(); ++k) stats.extraImages[k].second = extras[k].mean(stats.spp);
+  return image.mean(stats.spp);
+}
+
+}  // namespace
 
 RenderSettings resolveSettings(const Scene& scene, RenderSettings s) {
   if (s.width <= 0) s.width = scene.film.width;
@@ -21,17 +131,16 @@ const char* integratorNames() { return "path, direct, erpt"; }
 
 RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
   RenderSettings s = resolveSettings(scene, requested);
-  auto start = std::chrono::steady_clock::now();
+  const Clock::time_point start = Clock::now();
   RgbImage image;
-  if (s.integrator == "path")
-    image = renderPath(scene, s, stats);
-  else if (s.integrator == "erpt")
-    image = renderErpt(scene, s, stats);
-  else if (s.integrator == "direct")
-    image = renderDirect(scene, s, stats);
-  else
-    throw UsageError("unknown integrator '" + s.integrator + "' (available: " + integratorNames() + ")");
-  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (s.timeBudget != 0) {
+    image = renderForTime(scene, s, stats, start);
+  } else {
+    image = renderOnce(scene, s, stats);
+    stats.spp = s.spp;
+    stats.passes = 1;
+  }
+  stats.seconds = secondsSince(start);
   return image;
 }
 

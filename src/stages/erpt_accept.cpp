@@ -1,6 +1,6 @@
 // ERPT accept stage: acceptance probability from the path contributions in the mutation's
 // measure, the Metropolis decision, the step's deposits (equal deposition: every step of
-// every chain deposits e_d), and the chain update.
+// every chain deposits e_d; detailed balance: expected values of e / m), and the chain update.
 #include <algorithm>
 #include <cmath>
 
@@ -88,12 +88,15 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
       ++rejected[proposals.reason[i]];
 
     const Color colorY{chains.colorR[i], chains.colorG[i], chains.colorB[i]};
-    const float ed = ctx.depositEnergy;
-    if (ctx.expectedDeposit) {
+    const float ed = chains.energy[i];
+    // Detailed balance (section 3.1): the mutation receives e q / m, the rest stays at x,
+    // and x never moves; the deposits are the expected-value ones with e / m per step.
+    const bool detailedBalance = ctx.flow == FlowRule::DetailedBalance;
+    if (ctx.expectedDeposit || detailedBalance) {
       writeDeposit(deposits, i, 0, chains.filmX[i], chains.filmY[i], colorY * (ed * (1 - q)));
       if (q > 0) writeDeposit(deposits, i, 1, proposals.filmX[i], proposals.filmY[i], fz * (ed * q));
     }
-    if (accept) {
+    if (accept && !detailedBalance) {
       for (int j = 1; j <= last; ++j) chainVertices.copyRow(base + size_t(j), proposalVertices, base + size_t(j));
       chains.filmX[i] = proposals.filmX[i];
       chains.filmY[i] = proposals.filmY[i];
@@ -105,7 +108,7 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
       // Another mutation's cached tail may include vertices this one moved.
       if (chains.tailKind[i] != uint8_t(kind)) chains.tailKind[i] = uint8_t(MutationKind::None);
     }
-    if (!ctx.expectedDeposit)
+    if (!ctx.expectedDeposit && !detailedBalance)
       writeDeposit(deposits, i, 0, chains.filmX[i], chains.filmY[i],
                    Color(chains.colorR[i], chains.colorG[i], chains.colorB[i]) * ed);
     ++chains.step[i];

@@ -1,19 +1,55 @@
 // ERPT deposit stage: the step's deposit records go to the film one slot after another, so
 // the sums (and the image) do not depend on how the other stages were split over threads.
+// The noise filters of the paper's section 4.4 run here, over the same records: the
+// consecutive-sample filter drops records, the proposed-mutations filter counts proposals.
+#include <cmath>
+
 #include "erpt/erpt_stages.h"
 
 namespace erpt {
 
-double applyDeposits(const DepositQueue& deposits, size_t count, const FilmDensity& density, Film& film) {
+namespace {
+
+// The pixel a film position falls in, packed as two 16-bit coordinates (positions a little
+// outside the image, where wide filters still sample, get their own codes).
+uint32_t pixelCode(float x, float y) {
+  const auto c = [](float v) { return uint32_t(uint16_t(int16_t(std::floor(v)))); };
+  return c(x) | (c(y) << 16);
+}
+
+}  // namespace
+
+double applyDeposits(ChainQueue& chains, const ProposalQueue& proposals, const DepositQueue& deposits, IndexRange range,
+                     const FilmDensity& density, Film& film, DepositFilters& filters) {
   double total = 0;
-  auto splat = [&](float x, float y, Color c) {
+  auto splat = [&](float x, float y, Color c, bool discard) {
     if (isBlack(c)) return;
+    if (discard) {
+      ++filters.discarded;
+      filters.discardedEnergy += luminance(c);
+      return;
+    }
     total += luminance(c);
     density.splat(x, y, [&](uint32_t pixel, float w) { film.add(pixel, c * w); });
   };
-  for (size_t i = 0; i < count; ++i) {
-    splat(deposits.x0[i], deposits.y0[i], Color(deposits.r0[i], deposits.g0[i], deposits.b0[i]));
-    splat(deposits.x1[i], deposits.y1[i], Color(deposits.r1[i], deposits.g1[i], deposits.b1[i]));
+  const int w = density.width(), h = density.height();
+  for (size_t i = range.begin; i < range.end; ++i) {
+    // Only slots that took a step this round have records; a free slot's are zero.
+    uint32_t stuckPixel = kNoPixel;
+    if (filters.maxConsecutive > 0 && chains.step[i] > 0) {
+      // The chain's path after this step: the same pixel as the step before extends the run.
+      const uint32_t p = pixelCode(chains.filmX[i], chains.filmY[i]);
+      chains.runLength[i] = p == chains.runPixel[i] ? chains.runLength[i] + 1 : 1;
+      chains.runPixel[i] = p;
+      if (chains.runLength[i] > filters.maxConsecutive) stuckPixel = p;
+    }
+    const float x0 = deposits.x0[i], y0 = deposits.y0[i], x1 = deposits.x1[i], y1 = deposits.y1[i];
+    splat(x0, y0, Color(deposits.r0[i], deposits.g0[i], deposits.b0[i]), pixelCode(x0, y0) == stuckPixel);
+    splat(x1, y1, Color(deposits.r1[i], deposits.g1[i], deposits.b1[i]), pixelCode(x1, y1) == stuckPixel);
+    if (filters.proposalTally && proposals.state[i] == kProposalComplete) {
+      const float px = std::floor(proposals.filmX[i]), py = std::floor(proposals.filmY[i]);
+      if (px >= 0 && py >= 0 && px < float(w) && py < float(h)) ++(*filters.proposalTally)[size_t(py) * size_t(w) + size_t(px)];
+    }
   }
   return total;
 }

@@ -27,7 +27,7 @@ int loadChainPath(const ChainQueue& chains, const VertexQueue& vertices, size_t 
 }
 
 void loadChainFromSeed(ChainQueue& chains, VertexQueue& chainVertices, size_t slot, const SeedStore& store,
-                       size_t seed, uint64_t key, uint32_t chainLength) {
+                       size_t seed, uint64_t key, uint32_t chainLength, float energyPerStep) {
   const SeedQueue& s = store.seeds;
   const uint32_t n = s.vertexCount[seed];
   for (uint32_t j = 0; j < n; ++j)
@@ -49,6 +49,9 @@ void loadChainFromSeed(ChainQueue& chains, VertexQueue& chainVertices, size_t sl
   chains.colorR[slot] = color.x;
   chains.colorG[slot] = color.y;
   chains.colorB[slot] = color.z;
+  chains.energy[slot] = energyPerStep;
+  chains.runPixel[slot] = kNoPixel;
+  chains.runLength[slot] = 0;
 }
 
 namespace {

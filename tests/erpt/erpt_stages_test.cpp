@@ -19,12 +19,12 @@ std::string cornell() { return test::sharedScenesDir() + "/cornell-box/scene.xml
 std::string defaultScene() { return test::sourceDir() + "/scenes/default/scene.xml"; }
 
 // Loads the first `capacity` seeds that fit a chain into the queues.
-size_t loadSeeds(const ErptWorld& w, ChainQueues& q, uint32_t chainLength) {
+size_t loadSeeds(const ErptWorld& w, ChainQueues& q, uint32_t chainLength, float energyPerStep = 1) {
   size_t slot = 0;
   for (size_t s = 0; s < w.seeds.size() && slot < q.chains.size(); ++s) {
     if (w.seeds.seeds.vertexCount[s] > uint32_t(kMaxChainVertices) || !(luminance(w.seeds.contribution(s)) > 0))
       continue;
-    loadChainFromSeed(q.chains, q.chainVertices, slot, w.seeds, s, streamKey(9, s, 0), chainLength);
+    loadChainFromSeed(q.chains, q.chainVertices, slot, w.seeds, s, streamKey(9, s, 0), chainLength, energyPerStep);
     ++slot;
   }
   return slot;
@@ -45,6 +45,7 @@ TEST(ErptStages, AcceptKeepsExactlyTheAcceptedProposals) {
     ASSERT_GT(loaded, 1000u);
     const ErptStepContext ctx = w.stepContext(MutationStrategy::Mixed);
     q.propose(w, ctx);
+    const float depositEnergy = 1;  // loadSeeds' energy per step
     const ChainQueue before = q.chains;
     const VertexQueue verticesBefore = q.chainVertices;
     ErptCounters counters;
@@ -79,7 +80,7 @@ TEST(ErptStages, AcceptKeepsExactlyTheAcceptedProposals) {
       EXPECT_EQ(q.chains.step[i], before.step[i] + 1);
       // The paper's rule: one deposit of e_d at the (possibly new) current path.
       EXPECT_EQ(q.deposits.x0[i], q.chains.filmX[i]);
-      EXPECT_NEAR(luminance(Color(q.deposits.r0[i], q.deposits.g0[i], q.deposits.b0[i])), ctx.depositEnergy, 1e-5);
+      EXPECT_NEAR(luminance(Color(q.deposits.r0[i], q.deposits.g0[i], q.deposits.b0[i])), depositEnergy, 1e-5);
     }
     EXPECT_GT(accepted, loaded / 10) << file;
     EXPECT_GT(rejected, loaded / 50) << file;
@@ -93,8 +94,8 @@ TEST(ErptStages, AcceptKeepsExactlyTheAcceptedProposals) {
 TEST(ErptStages, ExpectedDepositsSplitByAcceptance) {
   ErptWorld w(defaultScene(), 32, 2, FilterKind::Box);
   ChainQueues q(1024);
-  const size_t loaded = loadSeeds(w, q, 5);
-  ErptStepContext ctx = w.stepContext(MutationStrategy::Paper, 0.5f);
+  const size_t loaded = loadSeeds(w, q, 5, 0.5f);
+  ErptStepContext ctx = w.stepContext(MutationStrategy::Paper);
   ctx.expectedDeposit = true;
   q.propose(w, ctx);
   const ChainQueue before = q.chains;
@@ -132,7 +133,7 @@ TEST(ErptStages, DepositsSumToChainsTimesLengthTimesDepositEnergy) {
   Film film(w.width, w.height);
   ErptStats stats;
   StageTimes times;
-  ErptChains::Config config{w.stepContext(MutationStrategy::Paper, 0.02f), 7, 3, false, 512};
+  ErptChains::Config config{w.stepContext(MutationStrategy::Paper), 7, 3, false, 512, 0.02};
   ErptChains chains(*w.tracer, config, film, stats, times);
   chains.consume(w.seeds);
   chains.finish();
@@ -170,7 +171,7 @@ TEST(ErptStages, LensMovesAreReversibleAndInDetailedBalance) {
   for (size_t s = 0; s < w.seeds.size() && slot < forward.chains.size(); ++s) {
     if (w.seeds.seeds.vertexCount[s] > uint32_t(kMaxChainVertices) || !(luminance(w.seeds.contribution(s)) > 0))
       continue;
-    loadChainFromSeed(forward.chains, forward.chainVertices, slot++, w.seeds, s, streamKey(4, s, 0), 10);
+    loadChainFromSeed(forward.chains, forward.chainVertices, slot++, w.seeds, s, streamKey(4, s, 0), 10, 1.0f);
   }
   const ErptStepContext ctx = w.stepContext(MutationStrategy::LensOnly);
   forward.propose(w, ctx);

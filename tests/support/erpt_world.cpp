@@ -23,10 +23,9 @@ ErptWorld::ErptWorld(const std::string& sceneFile, int size, int spp, FilterKind
   render(scene, s, stats);
 }
 
-ErptStepContext ErptWorld::stepContext(MutationStrategy strategy, float depositEnergy) const {
+ErptStepContext ErptWorld::stepContext(MutationStrategy strategy) const {
   ErptStepContext c{measure()};
   c.strategy = strategy;
-  c.depositEnergy = depositEnergy;
   return c;
 }
 

@@ -25,7 +25,7 @@ struct ErptWorld {
   // with seed recording.
   ErptWorld(const std::string& sceneFile, int size, int spp, FilterKind filter, uint64_t seed = 1);
   MeasureContext measure() const { return {scene, *lights, *camera, *density}; }
-  ErptStepContext stepContext(MutationStrategy strategy, float depositEnergy = 1) const;
+  ErptStepContext stepContext(MutationStrategy strategy) const;
   // The seed's path as PathVertex values.
   int seedPath(size_t seed, PathVertex* out) const;
 };
