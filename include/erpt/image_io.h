@@ -3,6 +3,7 @@
 // run never leaves a partial image behind.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,9 @@ RgbImage readImage(const std::string& path, bool* isSrgbEncoded = nullptr);
 void writeImageAtomic(const std::string& path, const RgbImage& image);
 // Tone-mapped display image: clamp to [0,1], sRGB transfer curve, 8 bits.
 void writePngAtomic(const std::string& path, const RgbImage& image);
+
+// 8-bit RGB pixels as they are (charts, heat maps), rows top to bottom.
+void writeRgb8Atomic(const std::string& path, int width, int height, const uint8_t* rgb);
 
 // Remove any temporary image being written (for signal handlers: async-signal-safe).
 void removePendingImageFiles();

@@ -5,6 +5,7 @@
 
 #include "erpt/erpt_settings.h"
 #include "erpt/render.h"
+#include "erpt/scene.h"
 #include <vector>
 
 namespace CLI {
@@ -31,12 +32,25 @@ struct InfoArgs {
 };
 
 struct DiffArgs {
-  std::string image, reference;
+  std::string image, reference, heatmap;
+};
+
+struct CompareArgs {
+  RenderArgs render;  // scene, render and ERPT options (not --integrator, -o or --time)
+  std::string reference, outDir = "compare-out", integrators = "path,erpt";
+  double time = 0;
+  std::string commandLine;  // recorded in the report
 };
 
 void addDiffCommand(CLI::App& app, DiffArgs& args);
 int runDiff(const DiffArgs& args);
 void addRenderCommand(CLI::App& app, RenderArgs& args);
+// The render and ERPT options shared by `render` and `compare`.
+void addRenderOptions(CLI::App* cmd, RenderArgs& args);
+Scene loadSceneFor(const RenderArgs& args);
+RenderSettings settingsFromArgs(const RenderArgs& args, const Scene& scene);
+void addCompareCommand(CLI::App& app, CompareArgs& args);
+int runCompare(const CompareArgs& args);
 void addInfoCommand(CLI::App& app, InfoArgs& args);
 int runRender(const RenderArgs& args);
 int runInfo(const InfoArgs& args);

@@ -1,4 +1,4 @@
-// The `erpt` command line: `erpt render`, `erpt info` and `erpt diff`.
+// The `erpt` command line: `erpt render`, `erpt info`, `erpt diff` and `erpt compare`.
 #include <unistd.h>
 
 #include <csignal>
@@ -32,6 +32,10 @@ int main(int argc, char** argv) {
   erpt::cli::addInfoCommand(app, infoArgs);
   erpt::cli::DiffArgs diffArgs;
   erpt::cli::addDiffCommand(app, diffArgs);
+  erpt::cli::CompareArgs compareArgs;
+  erpt::cli::addCompareCommand(app, compareArgs);
+  compareArgs.commandLine = "erpt";
+  for (int i = 1; i < argc; ++i) compareArgs.commandLine += std::string(" ") + argv[i];
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -40,6 +44,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("render")) return erpt::cli::runRender(renderArgs);
     if (app.got_subcommand("diff")) return erpt::cli::runDiff(diffArgs);
+    if (app.got_subcommand("compare")) return erpt::cli::runCompare(compareArgs);
     return erpt::cli::runInfo(infoArgs);
   } catch (const erpt::InputError& e) {
     std::cerr << e.what() << "\n";

@@ -20,11 +20,7 @@ std::map<std::string, std::string> parseDefines(const std::vector<std::string>& 
   return out;
 }
 
-void addRenderCommand(CLI::App& app, RenderArgs& a) {
-  CLI::App* cmd = app.add_subcommand("render", "Render a Mitsuba XML scene to a linear EXR and a tone-mapped PNG");
-  cmd->add_option("scene", a.scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required();
-  cmd->add_option("-o,--output", a.output, "Output EXR path; the PNG is written beside it")->required();
-  cmd->add_option("--integrator", a.integrator, "Integrator: path (wavefront path tracer), erpt (energy redistribution path tracing) or direct (direct lighting, for debugging); default: the scene's, if it is one of these, else path");
+void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
   cmd->add_option("--spp", a.spp, "Samples per pixel (default: the scene's sample_count)")->check(CLI::Range(1, 1 << 24));
   cmd->add_option("--width", a.width, "Image width in pixels (default: the scene's film)")->check(CLI::Range(1, 65536));
   cmd->add_option("--height", a.height, "Image height in pixels (default: the scene's film)")->check(CLI::Range(1, 65536));
@@ -49,8 +45,6 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
       ->check(CLI::Range(1, 1 << 16));
   cmd->add_option("--deposit", a.deposit, "ERPT: paper (all of a step's energy at the chain's path) or expected ((1-q) at y, q at z)")
       ->check(CLI::IsMember({"paper", "expected"}));
-  cmd->add_option("--time", a.time, "Render for this many seconds instead of --spp samples per pixel (passes of growing spp; the image then depends on the machine's speed)")
-      ->check(CLI::Range(1e-3, 1e7));
   cmd->add_option("--flow", a.flow, "ERPT flow rule: equal-deposition (default, paper section 3.2) or detailed-balance (section 3.1: each seed is mutated --chain-length times and never moves)")
       ->check(CLI::IsMember({"equal-deposition", "detailed-balance"}));
   cmd->add_flag("--pm-filter", a.pmFilter, "ERPT: proposed-mutations noise filter (paper 4.4; biased); also writes OUT-raw.exr (unfiltered) and OUT-proposals.exr (the tally)");
@@ -62,19 +56,26 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
       ->check(CLI::Range(-1, 1 << 16));
 }
 
-int runRender(const RenderArgs& a) {
-  namespace fs = std::filesystem;
-  fs::path out(a.output);
-  if (out.extension() != ".exr") throw UsageError("-o must name an .exr file (the PNG is written beside it)");
-  fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
-  if (!fs::is_directory(dir)) throw UsageError("output directory '" + dir.string() + "' does not exist");
-  if (a.maxDepth == 0) throw UsageError("--max-depth must be -1 (unbounded) or at least 1");
+void addRenderCommand(CLI::App& app, RenderArgs& a) {
+  CLI::App* cmd = app.add_subcommand("render", "Render a Mitsuba XML scene to a linear EXR and a tone-mapped PNG");
+  cmd->add_option("scene", a.scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required();
+  cmd->add_option("-o,--output", a.output, "Output EXR path; the PNG is written beside it")->required();
+  cmd->add_option("--integrator", a.integrator, "Integrator: path (wavefront path tracer), erpt (energy redistribution path tracing) or direct (direct lighting, for debugging); default: the scene's, if it is one of these, else path");
+  cmd->add_option("--time", a.time, "Render for this many seconds instead of --spp samples per pixel (passes of growing spp; the image then depends on the machine's speed)")
+      ->check(CLI::Range(1e-3, 1e7));
+  addRenderOptions(cmd, a);
+}
 
+Scene loadSceneFor(const RenderArgs& a) {
   LoadOptions load;
   load.defines = parseDefines(a.defines);
   Scene scene = loadScene(a.scene, load);
   for (const std::string& w : scene.warnings.messages) std::cerr << w << "\n";
+  return scene;
+}
 
+RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
+  if (a.maxDepth == 0) throw UsageError("--max-depth must be -1 (unbounded) or at least 1");
   RenderSettings s;
   const bool sceneIntegratorKnown =
       scene.integrator.type == "path" || scene.integrator.type == "direct" || scene.integrator.type == "erpt";
@@ -101,6 +102,17 @@ int runRender(const RenderArgs& a) {
   if (a.integrator.empty() && !sceneIntegratorKnown && !a.quiet)
     std::cerr << "note: the scene asks for integrator '" << scene.integrator.type << "'; rendering with '"
               << s.integrator << "'\n";
+  return s;
+}
+
+int runRender(const RenderArgs& a) {
+  namespace fs = std::filesystem;
+  fs::path out(a.output);
+  if (out.extension() != ".exr") throw UsageError("-o must name an .exr file (the PNG is written beside it)");
+  fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
+  if (!fs::is_directory(dir)) throw UsageError("output directory '" + dir.string() + "' does not exist");
+  Scene scene = loadSceneFor(a);
+  RenderSettings s = settingsFromArgs(a, scene);
   Progress progress(!a.quiet);
   s.progress = [&](double f) { progress.update(f); };
   RenderStats stats;

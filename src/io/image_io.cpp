@@ -82,6 +82,10 @@ void writeImageAtomic(const std::string& path, const RgbImage& image) {
   writeAtomic(path, image.width, image.height, OIIO::TypeDesc::FLOAT, image.pixels.data());
 }
 
+void writeRgb8Atomic(const std::string& path, int width, int height, const uint8_t* rgb) {
+  writeAtomic(path, width, height, OIIO::TypeDesc::UINT8, rgb);
+}
+
 void writePngAtomic(const std::string& path, const RgbImage& image) {
   std::vector<uint8_t> bytes(image.pixels.size() * 3);
   for (size_t i = 0; i < image.pixels.size(); ++i)
