@@ -184,8 +184,14 @@ void BM_ErptDeposit(benchmark::State& state) {
   ErptCounters counters;
   stageErptAccept(f.ctx, chains, vertices, proposals, f.proposalVertices, deposits, counters, {0, kSlots});
   Film film(kSize, kSize);
+  // Argument 1: both noise filters on (consecutive samples at 10, proposal tally).
+  std::vector<uint32_t> tally(size_t(kSize) * kSize, 0);
   for (auto _ : state) {
     DepositFilters filters;
+    if (state.range(0) == 1) {
+      filters.maxConsecutive = 10;
+      filters.proposalTally = &tally;
+    }
     benchmark::DoNotOptimize(applyDeposits(chains, proposals, deposits, IndexRange{0, kSlots}, f.density, film, filters));
   }
   setRate(state, "deposits/s", kSlots);
@@ -225,7 +231,7 @@ BENCHMARK(BM_ErptIntersect)->THREADS;
 BENCHMARK(BM_ErptWalk)->THREADS;
 BENCHMARK(BM_ErptConnect)->THREADS;
 BENCHMARK(BM_ErptAccept)->THREADS;
-BENCHMARK(BM_ErptDeposit)->UseRealTime();
+BENCHMARK(BM_ErptDeposit)->Arg(0)->Arg(1)->UseRealTime();
 BENCHMARK(BM_ErptChainLoop)->THREADS->Unit(benchmark::kMillisecond);
 
 }  // namespace

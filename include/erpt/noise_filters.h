@@ -18,4 +18,10 @@ std::vector<float> expectedProposals(const std::vector<uint32_t>& tally, int wid
 // reached keep their value (there is nothing to compare with).
 RgbImage applyProposalFilter(const RgbImage& image, const std::vector<uint32_t>& tally, int radius);
 
+// The filtered render from ERPT's extra images (render.h): `chains` (what the chains
+// deposited) rescaled by the tally `proposals`, plus the rest of `raw` (the direct pass).
+// Time-budgeted renders call it on their accumulated images: the filter is not linear, so
+// it must see the whole tally, not one pass's.
+RgbImage proposalFilteredImage(const RgbImage& raw, const RgbImage& chains, const RgbImage& proposals, int radius);
+
 }  // namespace erpt

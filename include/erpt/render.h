@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +15,8 @@
 #include "erpt/seeds.h"
 
 namespace erpt {
+
+class Tracer;
 
 struct RenderSettings {
   std::string integrator = "path";
@@ -30,6 +33,9 @@ struct RenderSettings {
   // then cleared (streaming, so memory stays bounded). Unset: the store keeps all seeds.
   std::function<void(SeedStore&)> seedSink;
   ErptSettings erpt;
+  // The Embree scene. render() builds it once and every pass and sub-render (ERPT's pilot,
+  // seed and direct passes, time-budgeted passes) shares it; unset: the integrator builds one.
+  std::shared_ptr<const Tracer> tracer;
   // > 0: render for this many seconds of wall-clock time instead of `spp` samples per pixel
   // (see render()). The image then depends on the machine's speed.
   double timeBudget = 0;

@@ -2,6 +2,8 @@
 // gets the same wall-clock budget; the report gives error, error per time (Eff = 1 / (T MSE),
 // as in the PMC-ER paper's Table 1) and a log-log plot of error versus time from the images
 // each render had after every pass.
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -28,11 +30,57 @@ struct CompareRow {
   ErrorSeries series;
 };
 
-std::vector<std::string> splitList(const std::string& list) {
+// One entry of --integrators: `NAME` or `NAME[OPTIONS]`, OPTIONS being render options that
+// apply to this entry only (e.g. `erpt[--pm-filter --max-consecutive 20]`).
+struct IntegratorEntry {
+  std::string label;  // the entry as written: the row's name
+  RenderSettings settings;
+};
+
+std::vector<std::string> splitEntries(const std::string& list) {
   std::vector<std::string> out;
-  std::stringstream in(list);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) out.push_back(item);
+  std::string item;
+  int depth = 0;
+  for (char c : list) {
+    depth += c == '[' ? 1 : c == ']' ? -1 : 0;
+    if (c == ',' && depth == 0) {
+      if (!item.empty()) out.push_back(item);
+      item.clear();
+    } else {
+      item += c;
+    }
+  }
+  if (depth != 0) throw UsageError("--integrators: unbalanced [ ] in '" + list + "'");
+  if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+IntegratorEntry parseEntry(const std::string& entry, const RenderArgs& common, const Scene& scene) {
+  IntegratorEntry out{entry, {}};
+  RenderArgs args = common;
+  const size_t open = entry.find('[');
+  args.integrator = entry.substr(0, open);
+  if (args.integrator != "path" && args.integrator != "erpt" && args.integrator != "direct")
+    throw UsageError("unknown integrator '" + args.integrator + "' in --integrators (available: " + integratorNames() + ")");
+  if (open != std::string::npos) {
+    if (entry.back() != ']') throw UsageError("--integrators entry '" + entry + "' must end with ']'");
+    CLI::App options{"options of one --integrators entry"};
+    addRenderOptions(&options, args);
+    try {
+      options.parse(entry.substr(open + 1, entry.size() - open - 2), false);
+    } catch (const CLI::ParseError& e) {
+      throw UsageError("--integrators entry '" + entry + "': " + e.what());
+    }
+  }
+  out.settings = resolveSettings(scene, settingsFromArgs(args, scene));
+  return out;
+}
+
+// A file name for a row label: letters, digits, '-' and '_' kept, the rest '-'.
+std::string fileStem(const std::string& label) {
+  std::string out;
+  for (char c : label) out += std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' ? c : '-';
+  while (!out.empty() && out.back() == '-') out.pop_back();
   return out;
 }
 
@@ -108,32 +156,36 @@ void addCompareCommand(CLI::App& app, CompareArgs& a) {
   cmd->add_option("scene", a.render.scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required();
   cmd->add_option("--reference", a.reference, "Converged reference image (the render's size, or an integer multiple)")->required();
   cmd->add_option("--time", a.time, "Wall-clock budget of every integrator, in seconds")->required()->check(CLI::Range(1e-3, 1e6));
-  cmd->add_option("--integrators", a.integrators, "Comma-separated integrators (default path,erpt)");
+  cmd->add_option("--integrators", a.integrators, "Comma-separated integrators (default path,erpt); an entry may carry its own render options in brackets, e.g. 'path,erpt,erpt[--pm-filter --max-consecutive 20]'");
   cmd->add_option("--out", a.outDir, "Directory for the report (compare.md, compare.json, compare.png) and each integrator's image and error heat map (default compare-out)");
   addRenderOptions(cmd, a.render);
 }
 
 int runCompare(const CompareArgs& a) {
   namespace fs = std::filesystem;
-  const std::vector<std::string> integrators = splitList(a.integrators);
-  if (integrators.empty()) throw UsageError("--integrators names no integrator");
-  for (const std::string& name : integrators)
-    if (name != "path" && name != "erpt" && name != "direct")
-      throw UsageError("unknown integrator '" + name + "' in --integrators (available: " + integratorNames() + ")");
   const RgbImage referenceFile = readImage(a.reference);
   const Scene scene = loadSceneFor(a.render);
-  RenderSettings base = resolveSettings(scene, settingsFromArgs(a.render, scene));
+  RenderArgs common = a.render;
+  common.integrator = "path";  // the size and filter are all `base` is for
+  const RenderSettings base = resolveSettings(scene, settingsFromArgs(common, scene));
+  std::vector<IntegratorEntry> entries;
+  for (const std::string& e : splitEntries(a.integrators)) {
+    entries.push_back(parseEntry(e, a.render, scene));
+    if (entries.back().settings.width != base.width || entries.back().settings.height != base.height)
+      throw UsageError("--integrators entry '" + e + "' changes the image size; give --width/--height outside the brackets");
+  }
+  if (entries.empty()) throw UsageError("--integrators names no integrator");
   const RgbImage reference = matchReferenceSize(referenceFile, base.width, base.height);  // size errors before rendering
   std::error_code ec;
   fs::create_directories(a.outDir, ec);
   if (!fs::is_directory(a.outDir)) throw UsageError("cannot create output directory '" + a.outDir + "'");
 
   std::vector<CompareRow> rows;
-  for (const std::string& name : integrators) {
+  for (const IntegratorEntry& entry : entries) {
+    const std::string& name = entry.label;
     CompareRow row;
     row.integrator = row.series.name = name;
-    RenderSettings s = base;
-    s.integrator = name;
+    RenderSettings s = entry.settings;
     s.timeBudget = a.time;
     s.onPass = [&](const RgbImage& img, double seconds, int) {
       const ImageComparison c = compareImages(img, reference);
@@ -149,7 +201,7 @@ int runCompare(const CompareArgs& a) {
     row.passes = stats.passes;
     row.mutations = stats.erpt.mutations;
     row.error = compareImages(image, reference);
-    const fs::path out = fs::path(a.outDir) / name;
+    const fs::path out = fs::path(a.outDir) / fileStem(name);
     writeImageAtomic(out.string() + ".exr", image);
     writePngAtomic(out.string() + ".png", image);
     errorHeatmap(image, reference).writePng(out.string() + "-error.png");

@@ -35,7 +35,12 @@ int main(int argc, char** argv) {
   erpt::cli::CompareArgs compareArgs;
   erpt::cli::addCompareCommand(app, compareArgs);
   compareArgs.commandLine = "erpt";
-  for (int i = 1; i < argc; ++i) compareArgs.commandLine += std::string(" ") + argv[i];
+  for (int i = 1; i < argc; ++i) {
+    // Quoted where a shell would split or expand it, so the report's command can be pasted.
+    const std::string arg = argv[i];
+    const bool plain = arg.find_first_of(" []*?'\"$;&|<>(){}") == std::string::npos && !arg.empty();
+    compareArgs.commandLine += " " + (plain ? arg : "'" + arg + "'");
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -108,17 +108,15 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
   stats.invalidSamples = seedStats.invalidSamples;
   for (const auto& [name, seconds] : seedStats.stages.all()) stats.stages.add("seed " + name, seconds);
   RgbImage image = setup.film.resolve(double(s.spp));
+  RgbImage chainsOnly;
   if (o.pmFilterRadius >= 0) {
-    // The filter rescales what the chains deposited (not the direct pass); the unfiltered
-    // image and the tally are kept for the user to compare.
-    RgbImage filtered = applyProposalFilter(image, chains.proposalTally(), o.pmFilterRadius);
-    stats.extraImages.emplace_back("raw", std::move(image));
+    // The filter rescales what the chains deposited (not the direct pass) and needs it apart.
+    chainsOnly = image;
     RgbImage tally;
     tally.width = s.width;
     tally.height = s.height;
     for (uint32_t t : chains.proposalTally()) tally.pixels.push_back(Color(float(t)));
     stats.extraImages.emplace_back("proposals", std::move(tally));
-    image = std::move(filtered);
   }
 
   if (o.directSamples > 0) {
@@ -128,11 +126,16 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
     RenderStats directStats;
     RgbImage d = renderDirect(scene, direct, directStats);
     for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] += d.pixels[i];
-    for (auto& [name, extra] : stats.extraImages)
-      if (name == "raw")
-        for (size_t i = 0; i < extra.pixels.size(); ++i) extra.pixels[i] += d.pixels[i];
     stats.rays += directStats.rays;
     for (const auto& [name, seconds] : directStats.stages.all()) stats.stages.add("direct " + name, seconds);
+  }
+  if (o.pmFilterRadius >= 0) {
+    // Keep the unfiltered image and the chains' part for the user (and for time-budgeted
+    // renders, which filter the sum of their passes).
+    RgbImage filtered = proposalFilteredImage(image, chainsOnly, stats.extraImages.back().second, o.pmFilterRadius);
+    stats.extraImages.emplace_back("raw", std::move(image));
+    stats.extraImages.emplace_back("chains", std::move(chainsOnly));
+    return filtered;
   }
   return image;
 }

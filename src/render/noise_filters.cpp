@@ -1,6 +1,7 @@
 #include "erpt/noise_filters.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "erpt/error.h"
 
@@ -31,6 +32,14 @@ RgbImage applyProposalFilter(const RgbImage& image, const std::vector<uint32_t>&
   RgbImage out = image;
   for (size_t i = 0; i < out.pixels.size(); ++i)
     if (tally[i] > 0) out.pixels[i] = out.pixels[i] * (expected[i] / float(tally[i]));
+  return out;
+}
+
+RgbImage proposalFilteredImage(const RgbImage& raw, const RgbImage& chains, const RgbImage& proposals, int radius) {
+  std::vector<uint32_t> tally(proposals.pixels.size());
+  for (size_t i = 0; i < tally.size(); ++i) tally[i] = uint32_t(std::lround(std::max(0.0f, proposals.pixels[i].x)));
+  RgbImage out = applyProposalFilter(chains, tally, radius);
+  for (size_t i = 0; i < out.pixels.size(); ++i) out.pixels[i] += raw.pixels[i] - chains.pixels[i];
   return out;
 }
 

@@ -5,7 +5,9 @@
 #include <cmath>
 
 #include "direct_integrator.h"
+#include "erpt/noise_filters.h"
 #include "erpt/rng.h"
+#include "erpt/tracer.h"
 #include "erpt_integrator.h"
 #include "path_integrator.h"
 
@@ -77,6 +79,19 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
   WeightedSum image;
   std::vector<WeightedSum> extras;
   double notRendering = 0;  // time spent in onPass
+  // The image of all passes so far. The proposed-mutations filter is not linear: it is applied
+  // once, to the sum of the passes' chain images and tallies.
+  auto resultSoFar = [&]() {
+    if (s.integrator != "erpt" || s.erpt.pmFilterRadius < 0) return image.mean(stats.spp);
+    RgbImage raw, chains, proposals;
+    for (size_t k = 0; k < extras.size(); ++k) {
+      const std::string& name = stats.extraImages[k].first;
+      if (name == "raw") raw = extras[k].mean(stats.spp);
+      if (name == "chains") chains = extras[k].mean(stats.spp);
+      if (name == "proposals") proposals = extras[k].mean(1.0);
+    }
+    return proposalFilteredImage(raw, chains, proposals, s.erpt.pmFilterRadius);
+  };
   int passSpp = 1;
   for (int p = 0;; ++p) {
     pass.spp = passSpp;
@@ -89,7 +104,8 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
     const double passSeconds = secondsSince(passStart);
     image.add(img, passSpp);
     extras.resize(ps.extraImages.size());
-    for (size_t k = 0; k < ps.extraImages.size(); ++k) extras[k].add(ps.extraImages[k].second, passSpp);
+    for (size_t k = 0; k < ps.extraImages.size(); ++k)  // counts add up, images average
+      extras[k].add(ps.extraImages[k].second, ps.extraImages[k].first == "proposals" ? 1.0 : passSpp);
     if (p == 0)
       for (const auto& [name, extra] : ps.extraImages) stats.extraImages.emplace_back(name, RgbImage{});
     stats.samples += ps.samples;
@@ -103,7 +119,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
     const double elapsed = secondsSince(start) - notRendering;
     if (s.onPass) {
       const Clock::time_point t = Clock::now();
-      s.onPass(image.mean(stats.spp), elapsed, stats.spp);
+      s.onPass(resultSoFar(), elapsed, stats.spp);
       notRendering += secondsSince(t);
     }
     if (s.progress) s.progress(std::min(1.0, elapsed / s.timeBudget));
@@ -112,8 +128,9 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
     if (!(fits >= 1)) break;
     passSpp = int(std::min({2.0 * passSpp, std::floor(fits), double(1 << 24)}));
   }
-  for (size_t k = 0; k < extras.size(); ++k) stats.extraImages[k].second = extras[k].mean(stats.spp);
-  return image.mean(stats.spp);
+  for (size_t k = 0; k < extras.size(); ++k)
+    stats.extraImages[k].second = extras[k].mean(stats.extraImages[k].first == "proposals" ? 1.0 : stats.spp);
+  return resultSoFar();
 }
 
 }  // namespace
@@ -132,6 +149,10 @@ const char* integratorNames() { return "path, direct, erpt"; }
 RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
   RenderSettings s = resolveSettings(scene, requested);
   const Clock::time_point start = Clock::now();
+  if (!s.tracer) {
+    ThreadPool pool(s.threads);  // the BVH build uses the threads the render may use
+    s.tracer = std::make_shared<const Tracer>(scene);
+  }
   RgbImage image;
   if (s.timeBudget != 0) {
     image = renderForTime(scene, s, stats, start);

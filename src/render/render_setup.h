@@ -2,6 +2,7 @@
 // pixel filter, light sampler, stage context, film, and the tiled pixel order.
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "erpt/film.h"
@@ -14,7 +15,8 @@ namespace erpt {
 
 struct RenderSetup {
   ThreadPool pool;
-  Tracer tracer;
+  std::shared_ptr<const Tracer> sharedTracer;
+  const Tracer& tracer;
   Camera camera;
   PixelFilter filter;
   LightSampler lights;
@@ -25,7 +27,8 @@ struct RenderSetup {
 
   RenderSetup(const Scene& scene, const RenderSettings& s)
       : pool(s.threads),
-        tracer(scene),
+        sharedTracer(s.tracer ? s.tracer : std::make_shared<const Tracer>(scene)),
+        tracer(*sharedTracer),
         camera(scene.camera, s.width, s.height),
         filter(s.filter),
         lights(scene),

@@ -46,7 +46,10 @@ double applyDeposits(ChainQueue& chains, const ProposalQueue& proposals, const D
     const float x0 = deposits.x0[i], y0 = deposits.y0[i], x1 = deposits.x1[i], y1 = deposits.y1[i];
     splat(x0, y0, Color(deposits.r0[i], deposits.g0[i], deposits.b0[i]), pixelCode(x0, y0) == stuckPixel);
     splat(x1, y1, Color(deposits.r1[i], deposits.g1[i], deposits.b1[i]), pixelCode(x1, y1) == stuckPixel);
-    if (filters.proposalTally && proposals.state[i] == kProposalComplete) {
+    // A proposal goes "to" the pixel of its film position as soon as it has one: a lens
+    // proposal from the start (valid or not), a caustic one once it reached the eye.
+    const bool hasFilmPosition = proposals.state[i] == kProposalComplete || proposals.mutation[i] == uint8_t(MutationKind::Lens);
+    if (filters.proposalTally && hasFilmPosition) {
       const float px = std::floor(proposals.filmX[i]), py = std::floor(proposals.filmY[i]);
       if (px >= 0 && py >= 0 && px < float(w) && py < float(h)) ++(*filters.proposalTally)[size_t(py) * size_t(w) + size_t(px)];
     }

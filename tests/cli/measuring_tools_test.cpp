@@ -103,10 +103,11 @@ TEST(CompareCli, ShortRunGivesOneRowPerIntegratorAndAPlot) {
   ASSERT_EQ(test::runCli("render -q " + cornell() + " --width 16 --height 16 --spp 64 -o " + ref).exitCode, 0);
   const std::string out = dir.file("cmp");
   const test::CommandResult r = test::runCli("compare -q " + cornell() + " --width 16 --height 16 --spp 4 --reference " + ref +
-                                             " --time 0.4 --integrators path,erpt,direct --out " + out);
+                                             " --time 0.4 --integrators 'path,erpt,erpt[--pm-filter --max-consecutive 5]' --out " + out);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_NE(r.output.find("| integrator | time (s) | spp | mutations | MSE | relMSE |"), std::string::npos) << r.output;
-  for (const char* name : {"| path |", "| erpt |", "| direct |"}) EXPECT_EQ(countOf(r.output, name), 1u) << name << r.output;
+  for (const char* name : {"| path |", "| erpt |", "| erpt[--pm-filter --max-consecutive 5] |"})
+    EXPECT_EQ(countOf(r.output, name), 1u) << name << r.output;
   std::ifstream json(out + "/compare.json");
   std::stringstream js;
   js << json.rdbuf();
@@ -118,7 +119,7 @@ TEST(CompareCli, ShortRunGivesOneRowPerIntegratorAndAPlot) {
   EXPECT_NE(mds.str().find("erpt compare"), std::string::npos);
   const RgbImage plot = readImage(out + "/compare.png");
   EXPECT_GT(plot.width, 500);
-  for (const char* name : {"path", "erpt", "direct"}) {
+  for (const char* name : {"path", "erpt", "erpt---pm-filter---max-consecutive-5"}) {
     EXPECT_TRUE(std::filesystem::exists(out + "/" + name + ".exr")) << name;
     EXPECT_TRUE(std::filesystem::exists(out + "/" + name + "-error.png")) << name;
   }
@@ -134,7 +135,9 @@ TEST(CompareCli, BadArgumentsFailBeforeRendering) {
   };
   for (const Case& c : {Case{" --reference " + dir.file("ref24.exr"), "not the same size"},
                         Case{" --reference " + dir.file("missing.exr"), "missing.exr"},
-                        Case{" --reference " + dir.file("ref24.exr") + " --integrators path,bdpt", "unknown integrator 'bdpt'"}}) {
+                        Case{" --reference " + dir.file("ref24.exr") + " --integrators path,bdpt", "unknown integrator 'bdpt'"},
+                        Case{" --reference " + dir.file("ref24.exr") + " --integrators 'erpt[--flow sideways]'", "--flow"},
+                        Case{" --reference " + dir.file("ref24.exr") + " --integrators 'erpt[--spp 2'", "unbalanced"}}) {
     const test::CommandResult r = test::runCli(base + c.args);
     EXPECT_NE(r.exitCode, 0) << c.args;
     EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;

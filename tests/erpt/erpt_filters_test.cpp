@@ -143,12 +143,18 @@ TEST(NoiseFilters, OffByDefaultAndTheUnfilteredImageIsKept) {
   RenderSettings pm = plain;
   pm.erpt.pmFilterRadius = 3;
   const RgbImage filtered = render(scene, pm, pmStats);
-  ASSERT_EQ(pmStats.extraImages.size(), 2u);
-  EXPECT_EQ(pmStats.extraImages[0].first, "raw");
-  EXPECT_TRUE(sameImage(pmStats.extraImages[0].second, unfiltered));
+  auto extra = [&](const std::string& name) -> const RgbImage& {
+    for (const auto& [n, img] : pmStats.extraImages)
+      if (n == name) return img;
+    ADD_FAILURE() << "no extra image " << name;
+    return unfiltered;
+  };
+  ASSERT_EQ(pmStats.extraImages.size(), 3u);
+  EXPECT_TRUE(sameImage(extra("raw"), unfiltered));
   EXPECT_FALSE(sameImage(filtered, unfiltered));
+  EXPECT_TRUE(sameImage(filtered, proposalFilteredImage(extra("raw"), extra("chains"), extra("proposals"), 3)));
   double proposals = 0;
-  for (const Color& c : pmStats.extraImages[1].second.pixels) proposals += c.x;
+  for (const Color& c : extra("proposals").pixels) proposals += c.x;
   EXPECT_GT(proposals, 0.5 * double(pmStats.erpt.mutations));  // most proposals are complete paths
   EXPECT_LE(proposals, double(pmStats.erpt.mutations));
   RenderSettings consecutive = plain;

@@ -3,6 +3,9 @@
 // what the passes add up to.
 #include <gtest/gtest.h>
 
+#include <map>
+
+#include "erpt/noise_filters.h"
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
 #include "support/image_stats.h"
@@ -54,15 +57,25 @@ TEST(TimedRender, PassesAddUpAndTheAverageIsUnbiased) {
 }
 
 // ERPT under a budget keeps the configured mutations per seed in every pass: e_d comes from
-// the configured spp, so the chains do M mutations per pixel per `spp` seeds per pixel.
+// the configured spp, so the chains do M mutations per pixel per `spp` seeds per pixel. The
+// proposed-mutations filter sees the sum of the passes' tallies, not one pass's.
 TEST(TimedRender, ErptKeepsMutationsPerSeed) {
   const Scene scene = cornell();
   RenderSettings s = timed("erpt", 1.5);
   s.spp = 8;
   s.erpt.mutationsPerPixel = 40;
   s.erpt.chainLength = 20;
+  s.erpt.pmFilterRadius = 2;
   RenderStats stats;
   const RgbImage img = render(scene, s, stats);
+  std::map<std::string, RgbImage> extra(stats.extraImages.begin(), stats.extraImages.end());
+  ASSERT_EQ(extra.size(), 3u);
+  double proposals = 0;
+  for (const Color& c : extra["proposals"].pixels) proposals += c.x;
+  EXPECT_GT(proposals, 0.5 * double(stats.erpt.mutations));
+  EXPECT_LE(proposals, double(stats.erpt.mutations));
+  const RgbImage refiltered = proposalFilteredImage(extra["raw"], extra["chains"], extra["proposals"], 2);
+  for (size_t i = 0; i < img.pixels.size(); ++i) ASSERT_EQ(img.pixels[i].y, refiltered.pixels[i].y) << i;
   const double expected = double(stats.spp) / 8 * 40 * 32 * 32;
   EXPECT_NEAR(double(stats.erpt.mutations) / expected, 1.0, 0.15) << stats.erpt.mutations << " vs " << expected;
   const Color m = test::meanOf(img), r = test::meanOf(readImage(test::sharedScenesDir() + "/cornell-box/TungstenRender.exr"));
