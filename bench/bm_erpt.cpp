@@ -191,6 +191,10 @@ void BM_ErptDeposit(benchmark::State& state) {
     if (state.range(0) == 1) {
       filters.maxConsecutive = 10;
       filters.proposalTally = &tally;
+      // The same records every iteration: restart the runs, or every chain would look stuck.
+      state.PauseTiming();
+      std::fill(chains.runLength.begin(), chains.runLength.end(), 0u);
+      state.ResumeTiming();
     }
     benchmark::DoNotOptimize(applyDeposits(chains, proposals, deposits, IndexRange{0, kSlots}, f.density, film, filters));
   }
