@@ -39,6 +39,7 @@ struct CompareArgs {
   RenderArgs render;  // scene, render and ERPT options (not --integrator, -o or --time)
   std::string reference, outDir = "compare-out", integrators = "path,erpt";
   double time = 0;
+  bool json = false;        // print the JSON report instead of the Markdown table
   std::string commandLine;  // recorded in the report
 };
 

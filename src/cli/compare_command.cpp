@@ -158,6 +158,7 @@ void addCompareCommand(CLI::App& app, CompareArgs& a) {
   cmd->add_option("--time", a.time, "Wall-clock budget of every integrator, in seconds")->required()->check(CLI::Range(1e-3, 1e6));
   cmd->add_option("--integrators", a.integrators, "Comma-separated integrators (default path,erpt); an entry may carry its own render options in brackets, e.g. 'path,erpt,erpt[--pm-filter --max-consecutive 20]'");
   cmd->add_option("--out", a.outDir, "Directory for the report (compare.md, compare.json, compare.png) and each integrator's image and error heat map (default compare-out)");
+  cmd->add_flag("--json", a.json, "Print the JSON report on stdout instead of the Markdown table (both are written to --out)");
   addRenderOptions(cmd, a.render);
 }
 
@@ -215,9 +216,10 @@ int runCompare(const CompareArgs& a) {
                             std::to_string(base.width) + "X" + std::to_string(base.height) + ", " + number(a.time) +
                             " S EACH";
   errorVsTimePlot(series, title).writePng((fs::path(a.outDir) / "compare.png").string());
-  writeTextAtomic(fs::path(a.outDir) / "compare.json", jsonReport(a, base, rows));
+  const std::string json = jsonReport(a, base, rows);
+  writeTextAtomic(fs::path(a.outDir) / "compare.json", json);
   writeTextAtomic(fs::path(a.outDir) / "compare.md", "`" + a.commandLine + "`\n\n" + table);
-  std::cout << table;
+  std::cout << (a.json ? json : table);
   std::cerr << "compare: wrote " << (fs::path(a.outDir) / "compare.{md,json,png}").string() << " and each integrator's image and error heat map\n";
   return 0;
 }

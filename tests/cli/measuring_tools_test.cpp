@@ -119,6 +119,12 @@ TEST(CompareCli, ShortRunGivesOneRowPerIntegratorAndAPlot) {
   EXPECT_NE(mds.str().find("erpt compare"), std::string::npos);
   const RgbImage plot = readImage(out + "/compare.png");
   EXPECT_GT(plot.width, 500);
+  // --json prints the report itself (what compare.json holds) instead of the table.
+  const test::CommandResult j = test::runCli("compare -q " + cornell() + " --width 8 --height 8 --spp 1 --reference " + ref +
+                                             " --time 0.05 --integrators direct --json --out " + dir.file("cmp2"));
+  ASSERT_EQ(j.exitCode, 0) << j.output;
+  EXPECT_NE(j.output.find("\"results\": ["), std::string::npos) << j.output;
+  EXPECT_EQ(j.output.find("| integrator |"), std::string::npos) << j.output;
   for (const char* name : {"path", "erpt", "erpt---pm-filter---max-consecutive-5"}) {
     EXPECT_TRUE(std::filesystem::exists(out + "/" + name + ".exr")) << name;
     EXPECT_TRUE(std::filesystem::exists(out + "/" + name + "-error.png")) << name;
