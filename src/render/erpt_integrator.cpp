@@ -24,10 +24,10 @@
 namespace erpt {
 
 namespace {
-
 constexpr uint64_t kPilotStream = 0x70696c6f74ull;
+}  // namespace
 
-void validate(const ErptSettings& o) {
+void validateErptSettings(const ErptSettings& o) {
   if (o.mutationsPerPixel < 1) throw UsageError("--mutations-per-pixel must be at least 1");
   if (o.chainLength < 1) throw UsageError("--chain-length must be at least 1");
   if (!(o.lensRadius > 0) || !(o.lensRadius <= 1e4f)) throw UsageError("--lens-radius must be in (0, 10000] pixels");
@@ -40,11 +40,9 @@ void validate(const ErptSettings& o) {
     throw UsageError("--max-consecutive needs moving chains: it does not apply to --flow detailed-balance");
 }
 
-}  // namespace
-
 // e_ave: mean energy per pixel sample of the seeds ERPT will redistribute.
 double erptPilotEnergy(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
-  validate(s.erpt);
+  validateErptSettings(s.erpt);
   RenderSettings pilot = s;
   pilot.spp = s.erpt.pilotSpp;
   pilot.seed = streamKey(s.seed, kPilotStream, 0);
@@ -68,7 +66,7 @@ double erptPilotEnergy(const Scene& scene, const RenderSettings& s, RenderStats&
 
 RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
   const ErptSettings& o = s.erpt;
-  validate(o);
+  validateErptSettings(o);
   ErptStats& es = stats.erpt;
   es.pilotEnergy = o.knownPilotEnergy >= 0 ? o.knownPilotEnergy : erptPilotEnergy(scene, s, stats);
   es.depositEnergy = o.knownDepositEnergy > 0 ? o.knownDepositEnergy : double(s.spp) * es.pilotEnergy / o.mutationsPerPixel;

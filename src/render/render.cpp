@@ -149,6 +149,7 @@ const char* integratorNames() { return "path, direct, erpt"; }
 RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
   RenderSettings s = resolveSettings(scene, requested);
   const Clock::time_point start = Clock::now();
+  if (s.integrator == "erpt") validateErptSettings(s.erpt);  // before the BVH build: fail fast
   if (!s.tracer) {
     ThreadPool pool(s.threads);  // the BVH build uses the threads the render may use
     s.tracer = std::make_shared<const Tracer>(scene);

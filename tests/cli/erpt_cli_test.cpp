@@ -26,12 +26,27 @@ TEST(ErptCli, AbsurdOptionsAreRejectedBeforeRendering) {
   test::TempDir dir;
   const std::string out = dir.file("e.exr");
   for (const std::string args : {"--direct-samples 0", "--chain-length 0", "--mutation-strategy sideways",
-                                 "--mutations-per-pixel -3", "--deposit maybe", "--lens-radius 0"}) {
+                                 "--mutations-per-pixel -3", "--deposit maybe", "--lens-radius 0",
+                                 "--pm-filter-radius -2", "--max-consecutive -1", "--flow sideways", "--time 0",
+                                 "--flow detailed-balance --max-consecutive 5"}) {
     test::CommandResult r = test::runCli("render -q " + defaultScene() + " --integrator erpt " + args + " -o " + out);
     EXPECT_NE(r.exitCode, 0) << args;
     EXPECT_FALSE(r.output.empty()) << args;
     EXPECT_FALSE(std::filesystem::exists(out)) << args;
   }
+}
+
+// The proposed-mutations filter writes the raw image, the chains' part and the tally beside
+// the filtered one; --time renders in passes and says how many.
+TEST(ErptCli, FiltersKeepTheRawImageAndTimeBudgetsRenderInPasses) {
+  test::TempDir dir;
+  const std::string out = dir.file("e.exr");
+  test::CommandResult r = test::runCli("render -q " + defaultScene() + " --integrator erpt --width 16 --height 16 --spp 2 " +
+                                       "--mutations-per-pixel 5 --chain-length 10 --pm-filter --max-consecutive 10 --time 1 -o " + out);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  for (const char* name : {"e.exr", "e.png", "e-raw.exr", "e-raw.png", "e-chains.exr", "e-proposals.exr"})
+    EXPECT_TRUE(std::filesystem::exists(dir.file(name))) << name;
+  EXPECT_NE(r.output.find(" spp"), std::string::npos) << r.output;
 }
 
 TEST(ErptCli, DiffReportsErrorsAndRejectsMismatchedSizes) {
