@@ -15,9 +15,9 @@ constexpr int kSize = 128;
 constexpr size_t kSlots = 1 << 13;
 constexpr size_t kGrain = 256;
 
-// Seeds of a 4 spp path-traced Cornell box and a queue of chains started from them, frozen
-// before each stage.
-struct ErptFixture {
+// Seeds of a 4 spp path-traced Cornell box and the chain queues (ErptQueues, kSlots slots)
+// with chains started from them, plus snapshots of the queues before each stage.
+struct ErptFixture : ErptQueues {
   Scene scene = loadCornellBox();
   Tracer tracer{scene};
   Camera camera{scene.camera, kSize, kSize};
@@ -26,16 +26,11 @@ struct ErptFixture {
   FilmDensity density{filter, kSize, kSize};
   ErptStepContext ctx{MeasureContext{scene, lights, camera, density}};
   SeedStore seeds;
-  ChainQueue chains;
-  ProposalQueue proposals;
-  VertexQueue chainVertices, proposalVertices;
-  RayQueue eyeRays, rays, shadowRays, tracedShadowRays;
-  HitQueue hits;
+  RayQueue eyeRays, tracedShadowRays;
   ProposalQueue mutated, walked;  // proposals after mutate, after walk + connect
-  DepositQueue deposits;
   double energy = 0;  // sum of seed luminances
 
-  ErptFixture() {
+  ErptFixture() : ErptQueues(kSlots) {
     RenderSettings s;
     s.width = s.height = kSize;
     s.spp = 4;
@@ -45,14 +40,6 @@ struct ErptFixture {
     RenderStats stats;
     render(scene, s, stats);
     for (size_t i = 0; i < seeds.size(); ++i) energy += luminance(seeds.contribution(i));
-    chains.resize(kSlots);
-    proposals.resize(kSlots);
-    chainVertices.resize(kSlots * kMaxChainVertices);
-    proposalVertices.resize(kSlots * kMaxChainVertices);
-    prepareRays(rays, kSlots);
-    prepareRays(shadowRays, kSlots);
-    hits.resize(kSlots);
-    deposits.resize(kSlots);
     for (size_t slot = 0, i = 0; slot < kSlots; ++i)
       if (seeds.seeds.vertexCount[i] <= uint32_t(kMaxChainVertices) && luminance(seeds.contribution(i)) > 0)
         loadChainFromSeed(chains, chainVertices, slot++, seeds, i, streamKey(1, i, 0), 1 << 30, 0.01f);

@@ -48,8 +48,8 @@ double applyDeposits(ChainQueue& chains, const ProposalQueue& proposals, const D
     splat(x1, y1, Color(deposits.r1[i], deposits.g1[i], deposits.b1[i]), pixelCode(x1, y1) == stuckPixel);
     // A proposal goes "to" the pixel of its film position as soon as it has one: a lens
     // proposal from the start (valid or not), a caustic one once it reached the eye.
-    const bool hasFilmPosition = proposals.state[i] == kProposalComplete || proposals.mutation[i] == uint8_t(MutationKind::Lens);
-    if (filters.proposalTally && hasFilmPosition) {
+    if (filters.proposalTally &&
+        (proposals.state[i] == kProposalComplete || proposals.mutation[i] == uint8_t(MutationKind::Lens))) {
       const float px = std::floor(proposals.filmX[i]), py = std::floor(proposals.filmY[i]);
       if (px >= 0 && py >= 0 && px < float(w) && py < float(h)) ++(*filters.proposalTally)[size_t(py) * size_t(w) + size_t(px)];
     }

@@ -67,10 +67,7 @@ TEST(NoiseFilters, ConsecutiveSampleFilterCapsRunsOnOnePixel) {
   constexpr uint32_t kMax = 5, kSteps = 40;
   auto longestRun = [&](uint32_t maxConsecutive, uint64_t* discarded) {
     ChainQueues q(1024);
-    size_t loaded = 0;
-    for (size_t s = 0; s < w.seeds.size() && loaded < q.chains.size(); ++s)
-      if (w.seeds.seeds.vertexCount[s] <= uint32_t(kMaxChainVertices) && luminance(w.seeds.contribution(s)) > 0)
-        loadChainFromSeed(q.chains, q.chainVertices, loaded++, w.seeds, s, streamKey(5, s, 0), kSteps, 1.0f);
+    const size_t loaded = q.loadSeeds(w, kSteps, 1.0f, 5);
     ErptStepContext ctx = w.stepContext(MutationStrategy::LensOnly);
     ctx.lensRadius = 0.4f;
     DepositFilters filters;
@@ -170,10 +167,7 @@ TEST(NoiseFilters, OffByDefaultAndTheUnfilteredImageIsKept) {
 TEST(DetailedBalanceFlow, MutationsReceiveTheAcceptedShareAndTheSeedKeepsTheRest) {
   ErptWorld w(test::sourceDir() + "/scenes/default/scene.xml", 32, 2, FilterKind::Box);
   ChainQueues q(1024);
-  size_t loaded = 0;
-  for (size_t s = 0; s < w.seeds.size() && loaded < q.chains.size(); ++s)
-    if (w.seeds.seeds.vertexCount[s] <= uint32_t(kMaxChainVertices) && luminance(w.seeds.contribution(s)) > 0)
-      loadChainFromSeed(q.chains, q.chainVertices, loaded++, w.seeds, s, streamKey(6, s, 0), 4, 0.25f);
+  const size_t loaded = q.loadSeeds(w, 4, 0.25f, 6);
   ErptStepContext ctx = w.stepContext(MutationStrategy::Paper);
   ctx.flow = FlowRule::DetailedBalance;
   q.propose(w, ctx);

@@ -18,18 +18,6 @@ using test::ErptWorld;
 std::string cornell() { return test::sharedScenesDir() + "/cornell-box/scene.xml"; }
 std::string defaultScene() { return test::sourceDir() + "/scenes/default/scene.xml"; }
 
-// Loads the first `capacity` seeds that fit a chain into the queues.
-size_t loadSeeds(const ErptWorld& w, ChainQueues& q, uint32_t chainLength, float energyPerStep = 1) {
-  size_t slot = 0;
-  for (size_t s = 0; s < w.seeds.size() && slot < q.chains.size(); ++s) {
-    if (w.seeds.seeds.vertexCount[s] > uint32_t(kMaxChainVertices) || !(luminance(w.seeds.contribution(s)) > 0))
-      continue;
-    loadChainFromSeed(q.chains, q.chainVertices, slot, w.seeds, s, streamKey(9, s, 0), chainLength, energyPerStep);
-    ++slot;
-  }
-  return slot;
-}
-
 bool sameVertex(const VertexQueue& a, size_t i, const VertexQueue& b, size_t j) {
   return a.px[i] == b.px[j] && a.py[i] == b.py[j] && a.pz[i] == b.pz[j] && a.kind[i] == b.kind[j] &&
          a.material[i] == b.material[j];
@@ -41,7 +29,7 @@ TEST(ErptStages, AcceptKeepsExactlyTheAcceptedProposals) {
   for (const std::string& file : {cornell(), defaultScene()}) {
     ErptWorld w(file, 48, 2, FilterKind::Tent);
     ChainQueues q(2048);
-    const size_t loaded = loadSeeds(w, q, 10);
+    const size_t loaded = q.loadSeeds(w, 10, 1.0f, 9);
     ASSERT_GT(loaded, 1000u);
     const ErptStepContext ctx = w.stepContext(MutationStrategy::Mixed);
     q.propose(w, ctx);
@@ -94,7 +82,7 @@ TEST(ErptStages, AcceptKeepsExactlyTheAcceptedProposals) {
 TEST(ErptStages, ExpectedDepositsSplitByAcceptance) {
   ErptWorld w(defaultScene(), 32, 2, FilterKind::Box);
   ChainQueues q(1024);
-  const size_t loaded = loadSeeds(w, q, 5, 0.5f);
+  const size_t loaded = q.loadSeeds(w, 5, 0.5f, 9);
   ErptStepContext ctx = w.stepContext(MutationStrategy::Paper);
   ctx.expectedDeposit = true;
   q.propose(w, ctx);
@@ -167,12 +155,7 @@ namespace {
 TEST(ErptStages, LensMovesAreReversibleAndInDetailedBalance) {
   ErptWorld w(test::sharedScenesDir() + "/cornell-box/scene.xml", 48, 2, FilterKind::Tent);
   ChainQueues forward(1024);
-  size_t slot = 0;
-  for (size_t s = 0; s < w.seeds.size() && slot < forward.chains.size(); ++s) {
-    if (w.seeds.seeds.vertexCount[s] > uint32_t(kMaxChainVertices) || !(luminance(w.seeds.contribution(s)) > 0))
-      continue;
-    loadChainFromSeed(forward.chains, forward.chainVertices, slot++, w.seeds, s, streamKey(4, s, 0), 10, 1.0f);
-  }
+  const size_t slot = forward.loadSeeds(w, 10, 1.0f, 4);
   const ErptStepContext ctx = w.stepContext(MutationStrategy::LensOnly);
   forward.propose(w, ctx);
   const ChainQueue y = forward.chains;

@@ -1,6 +1,7 @@
 #include "support/erpt_world.h"
 
 #include "erpt/render.h"
+#include "erpt/rng.h"
 
 namespace erpt::test {
 
@@ -33,6 +34,16 @@ int ErptWorld::seedPath(size_t seed, PathVertex* out) const {
   const int n = int(seeds.seeds.vertexCount[seed]);
   for (int j = 0; j < n; ++j) out[j] = loadVertex(seeds.vertices, seeds.seeds.vertexBegin[seed] + size_t(j));
   return n;
+}
+
+size_t ChainQueues::loadSeeds(const ErptWorld& w, uint32_t chainLength, float energyPerStep, uint64_t keySeed) {
+  size_t slot = 0;
+  for (size_t s = 0; s < w.seeds.size() && slot < chains.size(); ++s) {
+    if (w.seeds.seeds.vertexCount[s] > uint32_t(kMaxChainVertices) || !(luminance(w.seeds.contribution(s)) > 0))
+      continue;
+    loadChainFromSeed(chains, chainVertices, slot++, w.seeds, s, streamKey(keySeed, s, 0), chainLength, energyPerStep);
+  }
+  return slot;
 }
 
 void ChainQueues::propose(const ErptWorld& world, const ErptStepContext& ctx) {

@@ -34,6 +34,10 @@ struct ErptWorld {
 // does) so tests can look between the stages.
 struct ChainQueues : ErptQueues {
   using ErptQueues::ErptQueues;
+  // Starts chains in slots 0, 1, ... at the world's seeds in order, skipping seeds too long
+  // for a chain or without energy, until the queue is full; chain keys streamKey(keySeed,
+  // seed, 0). Returns how many were loaded.
+  size_t loadSeeds(const ErptWorld& world, uint32_t chainLength, float energyPerStep, uint64_t keySeed);
   // mutate -> (intersect -> walk)* -> connect; stops before accept.
   void propose(const ErptWorld& world, const ErptStepContext& ctx);
 };
