@@ -25,7 +25,12 @@ bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wi, float u1, fl
 // transmission): its value (what sample() returns as weight times `probability`) and the
 // probability p_s that sample() picks it. False if the material has no such lobe. Used to
 // re-evaluate specular vertices of stored paths (ERPT seeds, density rule 2).
+// Off the lobe's direction (cosine to it below kDeltaLobeCosTolerance) the lobe is zero: false.
 bool bsdfDeltaLobe(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo, Color& value, float& probability);
+// How close (cosine) a stored path's direction must be to a Dirac lobe's to take it: the
+// vertices of a path traced along the lobe round to within ~1e-3 rad (ray origins are offset
+// from surfaces); 1 - 1e-4 is ~0.014 rad.
+constexpr float kDeltaLobeCosTolerance = 1 - 1e-4f;
 
 // The direction a Dirac lobe of `m` sends wi to: mirror reflection, or (transmission) the
 // refracted direction of a dielectric / the straight continuation of a thin dielectric.

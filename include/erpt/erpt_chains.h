@@ -23,27 +23,33 @@ class ErptChains {
     double depositEnergy = 0;    // e_d (equal deposition)
     uint32_t maxConsecutive = 0; // consecutive-sample filter (0: off)
     bool tallyProposals = false; // proposed-mutations filter: count proposals per pixel
+    uint32_t maxChainsPerSeed = 4096;  // ErptSettings::maxChainsPerSeed
   };
   ErptChains(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times);
 
   // Whether a seed is ERPT's to redistribute (not left to the direct-lighting pass).
   static bool takesSeed(const SeedStore& store, size_t i, bool excludeDirect);
   // Starts floor(U + e / (m e_d)) chains for each seed of the batch (detailed balance: one,
-  // depositing e / m per step) and runs steps whenever the queue is full; on return every
-  // chain of the batch is in the queue (or done).
+  // depositing e / m per step; at most Config::maxChainsPerSeed, each then depositing
+  // e / (m cap)) and runs steps whenever the queue is full; on return every chain of the batch
+  // is in the queue (or done). Seeds no chain can move (InPlaceReason), and every seed when
+  // e_d = 0, are deposited at their own film position.
   void consume(const SeedStore& batch);
   // Runs the remaining chains to the end.
   void finish();
   // Energy added to the film so far (luminance), for tests.
   double depositedEnergy() const { return deposited_; }
+  // The part of it deposited by seeds in place (InPlaceReason).
+  double inPlaceEnergy() const { return inPlaceDeposited_; }
   // Complete proposals per pixel (when Config::tallyProposals).
   const std::vector<uint32_t>& proposalTally() const { return tally_; }
 
  private:
   bool refill();  // true when every slot is busy afterwards
   void step();
-  void depositInPlace(const SeedStore& store, size_t seed, uint32_t chains);
-  float energyPerStep(const SeedStore& store, size_t seed) const;
+  void depositInPlace(const SeedStore& store, size_t seed, InPlaceReason why);
+  // Why seed `i` of `store` cannot start moving chains (kInPlaceReasonCount: it can).
+  InPlaceReason inPlaceReason(const SeedStore& store, size_t i) const;
   bool anyActive() const;
 
   const Tracer& tracer_;
@@ -53,12 +59,17 @@ class ErptChains {
   StageTimes& times_;
   ErptQueues q_;
   ErptCounters counters_;
-  // Chains of the current batch waiting for a slot: (seed index, copies left).
+  // Chains of the current batch waiting for a slot.
+  struct PendingSeed {
+    uint32_t seed, copiesLeft;
+    float energyPerStep;  // luminance each step of these chains deposits
+  };
   const SeedStore* batch_ = nullptr;
-  std::vector<std::pair<uint32_t, uint32_t>> pending_;
+  std::vector<PendingSeed> pending_;
+  std::vector<uint8_t> inPlace_;  // per seed of the batch: InPlaceReason, or kInPlaceReasonCount
   size_t pendingNext_ = 0;
   uint64_t seedCounter_ = 0, chainCounter_ = 0;
-  double deposited_ = 0;
+  double deposited_ = 0, inPlaceDeposited_ = 0;
   std::vector<uint32_t> tally_;
   DepositFilters filters_;
 };

@@ -17,21 +17,7 @@ namespace erpt {
 // their own pixel (their chains never move) and are counted as unhandled.
 constexpr int kMaxChainVertices = 12;
 
-enum class MutationKind : uint8_t { None = 0, Lens, Caustic };
 
-enum ProposalState : uint8_t { kProposalWalking = 0, kProposalConnecting, kProposalComplete, kProposalRejected };
-enum RejectReason : uint8_t {
-  kRejectNone = 0,
-  kRejectNoMutation,   // no mutation of the strategy applies to this path
-  kRejectOffFilm,      // the proposal's film position lies outside the sampled film
-  kRejectMissed,       // a traced ray missed (or escaped where the path had a surface)
-  kRejectKindChanged,  // a vertex of another kind (specular / non-specular / light) was hit
-  kRejectOccluded,     // the connection is blocked
-  kRejectZero,         // the proposal carries no light (back of an emitter, BSDF zero, ...)
-  kRejectByChance,     // valid proposal, not accepted by the coin flip
-  kRejectReasonCount
-};
-const char* rejectReasonName(RejectReason r);
 
 struct PathVertex {
   Vec3 p, ns, ng;

@@ -3,6 +3,8 @@
 
 #include <cstdint>
 
+#include "erpt/erpt_kinds.h"
+
 namespace erpt {
 
 // Which mutation a chain uses: the paper's (caustic perturbation for paths L...SDE, lens
@@ -28,6 +30,9 @@ struct ErptSettings {
   // Noise filters of section 4.4 (biased; off by default).
   int pmFilterRadius = -1;      // >= 0: proposed-mutations filter, box of (2r+1)^2 pixels; -1: off
   int maxConsecutive = 0;       // >= 1: consecutive-sample filter, N deposits in a row on a pixel; 0: off
+  // At most this many chains start from one seed; a seed that would start more (a tiny e_ave
+  // makes e / (m e_d) explode) starts this many, each step depositing e / (m cap) instead of e_d.
+  int maxChainsPerSeed = 4096;
   // Set by time-budgeted rendering (render.h), which runs ERPT in passes: a known e_ave (the
   // pilot runs once) and a fixed e_d (so every pass keeps the configured mutations per seed).
   double knownPilotEnergy = -1;  // >= 0: skip the pilot pass
@@ -38,10 +43,11 @@ struct ErptStats {
   uint64_t seeds = 0;           // seeds offered to ERPT (with energy, not left to the direct pass)
   uint64_t chains = 0;
   uint64_t mutations = 0;       // chain steps
-  uint64_t proposed[3] = {}, accepted[3] = {};  // by MutationKind (none, lens, caustic)
-  uint64_t rejected[16] = {};   // by RejectReason
+  uint64_t proposed[kMutationKindCount] = {}, accepted[kMutationKindCount] = {};  // by MutationKind
+  uint64_t rejected[kRejectReasonCount] = {};  // by RejectReason
   uint64_t deposits = 0;
-  uint64_t unhandledSeeds = 0;  // seeds no mutation could handle (too long, or no kind applies)
+  uint64_t inPlace[kInPlaceReasonCount] = {};  // seeds deposited where they are, by InPlaceReason
+  uint64_t cappedSeeds = 0;     // seeds whose chain count hit maxChainsPerSeed (their steps deposit more)
   uint64_t rays = 0;
   double pilotEnergy = 0;       // e_ave
   double depositEnergy = 0;     // e_d

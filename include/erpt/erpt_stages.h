@@ -33,7 +33,7 @@ inline uint32_t stepDim(uint32_t step, uint32_t use) { return step * kStepDims +
 
 // Statistics the accept stage counts (summed over threads).
 struct ErptCounters {
-  std::atomic<uint64_t> proposed[3] = {}, accepted[3] = {};  // by MutationKind
+  std::atomic<uint64_t> proposed[kMutationKindCount] = {}, accepted[kMutationKindCount] = {};  // by MutationKind
   std::atomic<uint64_t> rejected[kRejectReasonCount] = {};
 };
 

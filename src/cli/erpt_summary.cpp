@@ -9,17 +9,25 @@ namespace erpt::cli {
 void printErptSummary(const RenderStats& stats) {
   const ErptStats& e = stats.erpt;
   auto pct = [](uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; };
-  const uint64_t lens = e.proposed[size_t(MutationKind::Lens)], caustic = e.proposed[size_t(MutationKind::Caustic)];
+  uint64_t inPlace = 0;
+  for (uint64_t n : e.inPlace) inPlace += n;
   std::fprintf(stderr,
                "erpt: e_ave %.4g, e_d %.4g; %llu seeds, %llu chains, %llu mutations (%.2f M/s in %.2f s of chain "
-               "loop), %llu deposits; %llu seeds no mutation could handle\n",
+               "loop), %llu deposits\n",
                e.pilotEnergy, e.depositEnergy, (unsigned long long)e.seeds, (unsigned long long)e.chains,
                (unsigned long long)e.mutations, e.erptSeconds > 0 ? double(e.mutations) / e.erptSeconds * 1e-6 : 0.0,
-               e.erptSeconds, (unsigned long long)e.deposits, (unsigned long long)e.unhandledSeeds);
-  std::fprintf(stderr, "erpt: lens %llu proposed, %.1f%% accepted; caustic %llu proposed, %.1f%% accepted; no mutation %llu\n",
-               (unsigned long long)lens, pct(e.accepted[size_t(MutationKind::Lens)], lens),
-               (unsigned long long)caustic, pct(e.accepted[size_t(MutationKind::Caustic)], caustic),
-               (unsigned long long)e.proposed[size_t(MutationKind::None)]);
+               e.erptSeconds, (unsigned long long)e.deposits);
+  std::fprintf(stderr, "erpt: seeds deposited in place %llu:", (unsigned long long)inPlace);
+  for (int r = 0; r < kInPlaceReasonCount; ++r)
+    std::fprintf(stderr, "%s %s %llu", r == 0 ? "" : ",", inPlaceReasonName(InPlaceReason(r)),
+                 (unsigned long long)e.inPlace[r]);
+  std::fprintf(stderr, "; seeds with capped chain counts %llu\n", (unsigned long long)e.cappedSeeds);
+  std::fprintf(stderr, "erpt:");
+  for (int k = 1; k < kMutationKindCount; ++k)
+    if (e.proposed[k] > 0)
+      std::fprintf(stderr, " %s %llu proposed, %.1f%% accepted;", mutationName(MutationKind(k)),
+                   (unsigned long long)e.proposed[k], pct(e.accepted[k], e.proposed[k]));
+  std::fprintf(stderr, " no mutation %llu\n", (unsigned long long)e.proposed[size_t(MutationKind::None)]);
   if (e.discardedDeposits > 0)
     std::fprintf(stderr, "erpt: consecutive-sample filter threw away %llu deposits (%.3g%% of the deposited energy)\n",
                  (unsigned long long)e.discardedDeposits,

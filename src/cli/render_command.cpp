@@ -52,6 +52,8 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
       ->check(CLI::Range(0, 1000));
   cmd->add_option("--max-consecutive", e.maxConsecutive, "ERPT: consecutive-sample noise filter (paper 4.4; biased): a chain's deposits are dropped after N in a row on one pixel (paper: 10-20; 0 = off)")
       ->check(CLI::Range(0, 1 << 30));
+  cmd->add_option("--max-chains-per-seed", e.maxChainsPerSeed, "ERPT: at most this many chains per seed (default 4096); a seed that would start more starts this many, each depositing more per step (same total)")
+      ->check(CLI::Range(1, 1000000));
   cmd->add_option("--direct-samples", e.directSamples, "ERPT: one-bounce paths by a direct-lighting pass with N samples per pixel (default 64); -1: ERPT renders them too, as in the paper")
       ->check(CLI::Range(-1, 1 << 16));
 }

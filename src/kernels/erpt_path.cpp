@@ -18,7 +18,30 @@ const char* rejectReasonName(RejectReason r) {
     case kRejectKindChanged: return "vertex kind changed";
     case kRejectOccluded: return "connection occluded";
     case kRejectZero: return "zero contribution";
+    case kRejectIrreversible: return "reverse move impossible";
+    case kRejectCurrentZero: return "current path zero in this measure";
     case kRejectByChance: return "not accepted (q)";
+    default: return "?";
+  }
+}
+
+const char* mutationName(MutationKind k) {
+  switch (k) {
+    case MutationKind::None: return "none";
+    case MutationKind::Lens: return "lens";
+    case MutationKind::LensDisk: return "lens (disk)";
+    case MutationKind::Caustic: return "caustic";
+    case MutationKind::CausticVeach: return "caustic (Veach angle)";
+    default: return "?";
+  }
+}
+
+const char* inPlaceReasonName(InPlaceReason r) {
+  switch (r) {
+    case kInPlaceTooLong: return "too long for a chain";
+    case kInPlaceNoMutation: return "no mutation applies";
+    case kInPlaceZeroContribution: return "zero or non-finite f";
+    case kInPlaceNoDepositEnergy: return "no deposition energy (e_d = 0)";
     default: return "?";
   }
 }

@@ -210,6 +210,10 @@ bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wiWorldSide, flo
 
 bool bsdfDeltaLobe(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo, Color& value, float& probability) {
   const bool reflection = wi.z * wo.z > 0;
+  // A Dirac lobe has no value off its direction: a path through this vertex must leave along
+  // the mirror (or refraction) direction, up to the rounding of vertices traced along it.
+  Vec3 lobe;
+  if (!specularDirection(m, wi, reflection, lobe) || !(dot(normalize(wo), lobe) >= kDeltaLobeCosTolerance)) return false;
   switch (m.kind) {
     case BsdfKind::Dielectric: {
       float f = fresnelDielectric(wi.z, m.relativeIOR());

@@ -25,15 +25,33 @@ ErptChains::ErptChains(const Tracer& tracer, const Config& config, Film& film, E
   }
 }
 
-float ErptChains::energyPerStep(const SeedStore& store, size_t seed) const {
-  if (config_.step.flow == FlowRule::DetailedBalance)
-    return float(double(luminance(store.contribution(seed))) / config_.chainLength);
-  return float(config_.depositEnergy);
-}
-
 bool ErptChains::takesSeed(const SeedStore& store, size_t i, bool excludeDirect) {
   // Eye, one surface vertex, light: a one-bounce path (two vertices: an emitter seen directly).
   return !excludeDirect || store.seeds.vertexCount[i] > 3;
+}
+
+InPlaceReason ErptChains::inPlaceReason(const SeedStore& store, size_t i) const {
+  const uint32_t n = store.seeds.vertexCount[i];
+  if (n > uint32_t(kMaxChainVertices)) return kInPlaceTooLong;
+  PathVertex path[kMaxChainVertices];
+  uint8_t kinds[kMaxChainVertices];
+  for (uint32_t j = 0; j < n; ++j) {
+    path[j] = loadVertex(store.vertices, store.seeds.vertexBegin[i] + j);
+    kinds[j] = path[j].kind;
+  }
+  // Every mutation the strategy may pick for this signature (the choice depends on the
+  // signature only, which mutations preserve) must see a path of positive, finite f: a chain
+  // standing on a zero of its target would accept anything.
+  const MutationKind choices[] = {chooseMutation(config_.step.strategy, kinds, int(n), 0.0f),
+                                  chooseMutation(config_.step.strategy, kinds, int(n), 0.999f)};
+  if (choices[0] == MutationKind::None && choices[1] == MutationKind::None) return kInPlaceNoMutation;
+  for (MutationKind kind : choices) {
+    if (kind == MutationKind::None) continue;
+    const float f = luminance(contributionFor(kind, config_.step.measure, path, int(n), store.seeds.filmX[i],
+                                              store.seeds.filmY[i]));
+    if (!(f > 0) || !std::isfinite(f)) return kInPlaceZeroContribution;
+  }
+  return kInPlaceReasonCount;
 }
 
 void ErptChains::consume(const SeedStore& batch) {
@@ -43,23 +61,39 @@ void ErptChains::consume(const SeedStore& batch) {
   const double ed = config_.depositEnergy;
   const double m = config_.chainLength;
   const bool detailedBalance = config_.step.flow == FlowRule::DetailedBalance;
+  // Which seeds can start moving chains: f in each mutation's measure, in parallel.
+  inPlace_.assign(batch.size(), uint8_t(kInPlaceReasonCount));
+  forEachRange("erpt seed check", batch.size(), kGrain, [&](IndexRange r) {
+    for (size_t i = r.begin; i < r.end; ++i)
+      if (takesSeed(batch, i, config_.excludeDirect)) inPlace_[i] = uint8_t(inPlaceReason(batch, i));
+  }, &times_);
   for (size_t i = 0; i < batch.size(); ++i) {
     if (!takesSeed(batch, i, config_.excludeDirect)) continue;
     const float e = luminance(batch.contribution(i));
     if (!(e > 0) || !std::isfinite(e)) continue;
     ++stats_.seeds;
+    // The seed's random number is drawn for every seed, so chain numbering does not depend on
+    // which seeds stay in place.
     const float u = uniformFloat(streamKey(config_.seed, kSeedStream, seedCounter_++), 0);
-    const uint32_t copies = detailedBalance ? 1 : chainsForSeed(e, m, ed, u);
-    if (copies == 0) continue;
-    stats_.chains += copies;
-    if (batch.seeds.vertexCount[i] > uint32_t(kMaxChainVertices)) {
-      // Too long for a chain slot: its chains could never move; deposit what they would.
-      ++stats_.unhandledSeeds;
-      depositInPlace(batch, i, copies);
+    if (inPlace_[i] != kInPlaceReasonCount) {
+      depositInPlace(batch, i, InPlaceReason(inPlace_[i]));
       continue;
     }
-    pending_.emplace_back(uint32_t(i), copies);
-
+    if (!detailedBalance && !(ed > 0)) {
+      depositInPlace(batch, i, kInPlaceNoDepositEnergy);
+      continue;
+    }
+    uint32_t copies = detailedBalance ? 1 : chainsForSeed(e, m, ed, u);
+    float energy = float(detailedBalance ? double(e) / m : ed);
+    if (copies > config_.maxChainsPerSeed) {
+      // Same total energy (e in expectation became exactly e), fewer chains.
+      copies = config_.maxChainsPerSeed;
+      energy = float(double(e) / (m * copies));
+      ++stats_.cappedSeeds;
+    }
+    if (copies == 0) continue;
+    stats_.chains += copies;
+    pending_.push_back(PendingSeed{uint32_t(i), copies, energy});
   }
   refill();
   while (pendingNext_ < pending_.size()) {
@@ -88,19 +122,21 @@ bool ErptChains::refill() {
       full = false;
       break;
     }
-    auto& [seed, copies] = pending_[pendingNext_];
-    loadChainFromSeed(q_.chains, q_.chainVertices, slot, *batch_, seed, streamKey(config_.seed, kChainStream, chainCounter_++),
-                      config_.chainLength, energyPerStep(*batch_, seed));
-    if (--copies == 0) ++pendingNext_;
+    PendingSeed& p = pending_[pendingNext_];
+    loadChainFromSeed(q_.chains, q_.chainVertices, slot, *batch_, p.seed,
+                      streamKey(config_.seed, kChainStream, chainCounter_++), config_.chainLength, p.energyPerStep);
+    if (--p.copiesLeft == 0) ++pendingNext_;
   }
   times_.add("erpt refill", secondsSince(start));
   return full;
 }
 
-void ErptChains::depositInPlace(const SeedStore& store, size_t seed, uint32_t chains) {
-  const Color c = store.contribution(seed);
-  const Color energy = c / luminance(c) * float(double(energyPerStep(store, seed)) * config_.chainLength * chains);
+void ErptChains::depositInPlace(const SeedStore& store, size_t seed, InPlaceReason why) {
+  // The seed's own estimate X_f, which is what its chains deposit in expectation.
+  const Color energy = store.contribution(seed);
+  ++stats_.inPlace[why];
   deposited_ += luminance(energy);
+  inPlaceDeposited_ += luminance(energy);
   config_.step.measure.film.splat(store.seeds.filmX[seed], store.seeds.filmY[seed],
                                   [&](uint32_t pixel, float w) { film_.add(pixel, energy * w); });
 }
@@ -143,7 +179,7 @@ void ErptChains::step() {
   times_.add("erpt deposit", secondsSince(start));
   // Counters to stats.
   uint64_t steps = 0;
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < kMutationKindCount; ++k) {
     stats_.proposed[k] = counters_.proposed[k];
     stats_.accepted[k] = counters_.accepted[k];
     steps += counters_.proposed[k];

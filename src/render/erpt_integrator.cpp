@@ -24,7 +24,7 @@
 namespace erpt {
 
 namespace {
-constexpr uint64_t kPilotStream = 0x70696c6f74ull;
+constexpr uint64_t kPilotStream = 0x70696c6f74ull, kDirectStream = 0x646972656374ull;
 }  // namespace
 
 void validateErptSettings(const ErptSettings& o) {
@@ -35,6 +35,8 @@ void validateErptSettings(const ErptSettings& o) {
   if (o.directSamples == 0 || o.directSamples < -1)
     throw UsageError("--direct-samples must be -1 (ERPT renders direct light too) or at least 1");
   if (o.pmFilterRadius < -1 || o.pmFilterRadius > 1000) throw UsageError("--pm-filter-radius must be in [0, 1000] pixels");
+  if (o.maxChainsPerSeed < 1 || o.maxChainsPerSeed > 1000000)
+    throw UsageError("--max-chains-per-seed must be in [1, 1000000]");
   if (o.maxConsecutive < 0) throw UsageError("--max-consecutive must be at least 1 (or 0: off)");
   if (o.maxConsecutive > 0 && o.flow == FlowRule::DetailedBalance)
     throw UsageError("--max-consecutive needs moving chains: it does not apply to --flow detailed-balance");
@@ -70,7 +72,6 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
   ErptStats& es = stats.erpt;
   es.pilotEnergy = o.knownPilotEnergy >= 0 ? o.knownPilotEnergy : erptPilotEnergy(scene, s, stats);
   es.depositEnergy = o.knownDepositEnergy > 0 ? o.knownDepositEnergy : double(s.spp) * es.pilotEnergy / o.mutationsPerPixel;
-  const bool detailedBalance = o.flow == FlowRule::DetailedBalance;
 
   RenderSetup setup(scene, s);
   FilmDensity density(setup.filter, s.width, s.height);
@@ -81,20 +82,20 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
       // Chain slots: 1024 per thread keeps a step's working set (chain and proposal vertices,
       // ~1.4 MB) in cache; larger queues measured up to 2x slower on this machine.
       size_t(1024) * size_t(std::max(1, setup.pool.threads())), es.depositEnergy, uint32_t(o.maxConsecutive),
-      o.pmFilterRadius >= 0};
+      o.pmFilterRadius >= 0, uint32_t(o.maxChainsPerSeed)};
   ErptChains chains(setup.tracer, config, setup.film, es, stats.stages);
 
   RenderSettings main = s;
   SeedStore store;
   main.seeds = &store;
   double inChains = 0;
-  if (es.depositEnergy > 0 || detailedBalance) {
-    main.seedSink = [&](SeedStore& batch) {
-      auto t = std::chrono::steady_clock::now();
-      chains.consume(batch);
-      inChains += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    };
-  }
+  // Every seed goes to the chain machine, also when e_d = 0 (the pilot found no energy): it
+  // then deposits the seeds where they are, so no energy is lost.
+  main.seedSink = [&](SeedStore& batch) {
+    auto t = std::chrono::steady_clock::now();
+    chains.consume(batch);
+    inChains += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
   RenderStats seedStats;
   renderPath(scene, main, seedStats);
   auto t = std::chrono::steady_clock::now();
@@ -120,6 +121,8 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
   if (o.directSamples > 0) {
     RenderSettings direct = s;
     direct.spp = o.directSamples;
+    // Its own random stream: the main pass's keys would correlate the two estimates.
+    direct.seed = streamKey(s.seed, kDirectStream, 0);
     direct.progress = nullptr;
     RenderStats directStats;
     RgbImage d = renderDirect(scene, direct, directStats);

@@ -31,10 +31,11 @@ void addErptStats(ErptStats& to, const ErptStats& from) {
   to.seeds += from.seeds;
   to.chains += from.chains;
   to.mutations += from.mutations;
-  for (int k = 0; k < 3; ++k) to.proposed[k] += from.proposed[k], to.accepted[k] += from.accepted[k];
+  for (int k = 0; k < kMutationKindCount; ++k) to.proposed[k] += from.proposed[k], to.accepted[k] += from.accepted[k];
   for (size_t r = 0; r < std::size(to.rejected); ++r) to.rejected[r] += from.rejected[r];
   to.deposits += from.deposits;
-  to.unhandledSeeds += from.unhandledSeeds;
+  for (int r = 0; r < kInPlaceReasonCount; ++r) to.inPlace[r] += from.inPlace[r];
+  to.cappedSeeds += from.cappedSeeds;
   to.rays += from.rays;
   to.pilotEnergy = from.pilotEnergy;
   to.depositEnergy = from.depositEnergy;

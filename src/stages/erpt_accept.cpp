@@ -31,7 +31,7 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
                      ProposalQueue& proposals, const VertexQueue& proposalVertices, DepositQueue& deposits,
                      ErptCounters& counters, IndexRange range) {
   PathVertex y[kMaxChainVertices], z[kMaxChainVertices];
-  uint64_t proposed[3] = {}, accepted[3] = {}, rejected[kRejectReasonCount] = {};
+  uint64_t proposed[kMutationKindCount] = {}, accepted[kMutationKindCount] = {}, rejected[kRejectReasonCount] = {};
   for (size_t i = range.begin; i < range.end; ++i) {
     writeDeposit(deposits, i, 0, 0, 0, Color(0.0f));
     writeDeposit(deposits, i, 1, 0, 0, Color(0.0f));
@@ -71,9 +71,15 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
           chains.fKind[i] = uint8_t(kind);
         }
         const float ly = chains.fLum[i];
-        q = ly > 0 ? std::min(1.0f, lz / ly) : 1.0f;
-        fz = fz / lz;
-        fzLum = lz;
+        if (ly > 0 && std::isfinite(ly)) {
+          q = std::min(1.0f, lz / ly);
+          fz = fz / lz;
+          fzLum = lz;
+        } else {
+          // A chain must never stand on a path of zero density in the mutation's measure (it
+          // would accept everything); seeds are checked when chains start, this is the guard.
+          proposals.reason[i] = kRejectCurrentZero;
+        }
       } else {
         proposals.reason[i] = kRejectZero;
       }
@@ -114,7 +120,7 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
     ++chains.step[i];
     --chains.stepsLeft[i];
   }
-  for (int k = 0; k < 3; ++k) {
+  for (int k = 0; k < kMutationKindCount; ++k) {
     counters.proposed[k] += proposed[k];
     counters.accepted[k] += accepted[k];
   }

@@ -67,6 +67,10 @@ void stageRecordSeeds(const StageContext& ctx, const PathQueue& paths, const Pat
     }
     if (slots.neeWeight[k] > 0 && shadowRays.tfar[k] >= 0) {
       uint32_t begin = copyChain(h, vertex, store.vertices, scratch);
+      // Next-event estimation evaluated the smooth lobes only, so the path is non-specular
+      // here, whatever lobe the shade stage then sampled to continue (and wrote into the
+      // history's kind: a plastic coat's Dirac lobe, say).
+      store.vertices.kind[store.vertices.size() - 1] = kNonSpecularVertex;
       store.vertices.pdfForward[store.vertices.size() - 1] = slots.neeBsdfPdf[k];
       size_t l = store.vertices.size();
       store.vertices.resize(l + 1);

@@ -94,7 +94,19 @@ TEST(StatisticalErpt, DefaultSceneMatchesLongPathTracedRender) {
   high.directSamples = 32;
   high.seed = 2;
   const RgbImage a = renderErptImage(scene, low), b = renderErptImage(scene, high);
-  expectMeansWithin(b, ref, 0.01);
+  // One such render's channel means scatter by about 1% (measured over 12 seeds: standard
+  // deviation 0.98%, mean ratio 1.0002), as much as the tolerance: the means are checked on
+  // the average of eight independent renders (0.35%), so the 1% bound has a margin of ~3
+  // standard deviations.
+  RgbImage average = b;
+  for (int k = 1; k < 8; ++k) {
+    ErptRun more = high;
+    more.seed = 2 + uint64_t(k);
+    const RgbImage c = renderErptImage(scene, more);
+    for (size_t i = 0; i < average.pixels.size(); ++i) average.pixels[i] += c.pixels[i];
+  }
+  for (Color& p : average.pixels) p = p / 8.0f;
+  expectMeansWithin(average, ref, 0.01);
   const double ea = test::relativeMse(a, ref), eb = test::relativeMse(b, ref);
   std::printf("relMSE %.3g -> %.3g, ratio %.2f\n", ea, eb, ea / eb);
   EXPECT_GT(ea / eb, 2.8);
@@ -142,7 +154,8 @@ void expectStationary(MutationStrategy strategy, double bound) {
     r.seed = 3 + level;
     RenderStats stats;
     const RgbImage img = renderErptImage(scene, r, &stats);
-    const uint64_t moved = stats.erpt.accepted[1] + stats.erpt.accepted[2];
+    uint64_t moved = 0;
+    for (uint64_t a : stats.erpt.accepted) moved += a;
     EXPECT_GT(moved, stats.erpt.mutations / 3);
     errors[level] = blockError(img, ref);
     std::printf("%d spp, %d mutations/pixel: %.1f%% accepted, block error %.5f\n", r.spp, r.mutations,

@@ -585,6 +585,42 @@ TEST(BsdfDelta, PlasticCoatIsAMirrorWithFresnelWeight) {
   EXPECT_NEAR(s.weight.x * s.pdf, fresnelDielectric(wi.z, m.relativeIOR()), 1e-6f);
 }
 
+// A Dirac lobe has value only along its own direction: bsdfDeltaLobe evaluated at a direction
+// 0.05 rad off the mirror (or refraction) direction is zero, for every material with one; on
+// the direction it matches what sampling the lobe gives. (Stored paths whose vertex kind says
+// "specular" where the path did not take the lobe must carry no contribution.)
+TEST(BsdfDelta, DeltaLobeIsZeroOffItsDirection) {
+  struct Case {
+    const char* name;
+    Material m;
+    bool reflection;
+  };
+  const Case cases[] = {{"conductor", conductor(kGoldEta, kGoldK), true},
+                        {"plastic coat", plastic(), true},
+                        {"dielectric reflection", dielectric(1.5f, 1.0f), true},
+                        {"dielectric refraction", dielectric(1.5f, 1.0f), false},
+                        {"thin dielectric transmission", dielectric(1.5f, 1.0f, BsdfKind::ThinDielectric), false}};
+  for (const Case& c : cases) {
+    const SurfaceColors colors = colorsOf(c.m);
+    for (float theta : {10.0f, 45.0f, 70.0f}) {
+      const Vec3 wi = direction(theta, 30.0f);
+      Vec3 wo;
+      ASSERT_TRUE(specularDirection(c.m, wi, c.reflection, wo)) << c.name;
+      Color value;
+      float p;
+      EXPECT_TRUE(bsdfDeltaLobe(c.m, colors, wi, wo, value, p)) << c.name << " theta " << theta;
+      EXPECT_GT(luminance(value), 0.0f) << c.name;
+      const Frame f(wo);
+      for (float phi : {0.0f, 2.0f, 4.0f}) {
+        const Vec3 off = normalize(f.toWorld(Vec3{std::sin(0.05f) * std::cos(phi), std::sin(0.05f) * std::sin(phi),
+                                                   std::cos(0.05f)}));
+        if (off.z * wo.z <= 0) continue;  // stay on the lobe's side of the surface
+        EXPECT_FALSE(bsdfDeltaLobe(c.m, colors, wi, off, value, p)) << c.name << " theta " << theta << " phi " << phi;
+      }
+    }
+  }
+}
+
 // ---------------------------------------------------------------------------------------
 // Fresnel and microfacet building blocks
 

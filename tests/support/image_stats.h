@@ -1,6 +1,8 @@
 // Image comparisons used by the statistical tests (the library's metrics, under short names).
 #pragma once
 
+#include <vector>
+
 #include "erpt/image_metrics.h"
 
 namespace erpt::test {
@@ -8,5 +10,17 @@ namespace erpt::test {
 using erpt::meanOf;
 // Mean over pixels and channels of (x - r)^2 / (r^2 + 0.01); sizes must agree.
 double relativeMse(const RgbImage& img, const RgbImage& ref);
+
+// Block-by-block comparison of two estimators from independent renders of each: per block of
+// block x block pixels, Welch's z = (mean_a - mean_b) / sqrt(var_a / n_a + var_b / n_b) on
+// the block's luminance, with the variances estimated from the runs. Unbiased estimators give
+// z^2 near 1 on average (a little more: the variances are estimated); a bias that moves energy
+// between regions gives large |z| in some blocks even when the image means agree.
+struct BlockZScores {
+  std::vector<double> z;  // one per block with energy, row-major
+  double meanSquare = 0;  // mean of z^2
+  double worst = 0;       // max |z|
+};
+BlockZScores blockZScores(const std::vector<RgbImage>& a, const std::vector<RgbImage>& b, int block);
 
 }  // namespace erpt::test
