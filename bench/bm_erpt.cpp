@@ -49,11 +49,10 @@ struct ErptFixture : ErptQueues {
     eyeRays = rays;
     mutated = proposals;
     tracer.intersect(rays, hits, all, RayCoherence::Incoherent);
-    stageErptWalk(ctx, chains, chainVertices, proposals, proposalVertices, rays, hits, shadowRays, all);
+    stageErptTrace(ctx, chains, chainVertices, proposals, proposalVertices, rays, hits, shadowRays, all);
     walked = proposals;
     tracedShadowRays = shadowRays;
-    tracer.occluded(tracedShadowRays, all);
-    stageErptResolveConnections(tracedShadowRays, walked, all);
+    stageErptConnect(tracer, tracedShadowRays, walked, all);
   }
 };
 
@@ -100,7 +99,7 @@ void BM_ErptIntersect(benchmark::State& state) {
   setRate(state, "rays/s", double(n));
 }
 
-void BM_ErptWalk(benchmark::State& state) {
+void BM_ErptTrace(benchmark::State& state) {
   ErptFixture& f = fixture();
   ThreadPool pool(int(state.range(0)));
   ProposalQueue proposals = f.mutated;
@@ -117,8 +116,8 @@ void BM_ErptWalk(benchmark::State& state) {
     proposals = f.mutated;
     rays = traced;
     state.ResumeTiming();
-    forEachRange("walk", kSlots, kGrain, [&](IndexRange r) {
-      stageErptWalk(f.ctx, f.chains, f.chainVertices, proposals, vertices, rays, hits, shadow, r);
+    forEachRange("trace", kSlots, kGrain, [&](IndexRange r) {
+      stageErptTrace(f.ctx, f.chains, f.chainVertices, proposals, vertices, rays, hits, shadow, r);
     });
   }
   setRate(state, "mutations/s", kSlots);
@@ -135,8 +134,7 @@ void BM_ErptConnect(benchmark::State& state) {
     std::copy(f.shadowRays.tfar.begin(), f.shadowRays.tfar.end(), shadow.tfar.begin());
     state.ResumeTiming();
     forEachRange("connect", kSlots, kGrain, [&](IndexRange r) {
-      f.tracer.occluded(shadow, r);
-      stageErptResolveConnections(shadow, proposals, r);
+      stageErptConnect(f.tracer, shadow, proposals, r);
     });
   }
   setRate(state, "rays/s", double(n));
@@ -219,7 +217,7 @@ void BM_ErptChainLoop(benchmark::State& state) {
 #define THREADS ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()
 BENCHMARK(BM_ErptMutate)->THREADS;
 BENCHMARK(BM_ErptIntersect)->THREADS;
-BENCHMARK(BM_ErptWalk)->THREADS;
+BENCHMARK(BM_ErptTrace)->THREADS;
 BENCHMARK(BM_ErptConnect)->THREADS;
 BENCHMARK(BM_ErptAccept)->THREADS;
 BENCHMARK(BM_ErptDeposit)->Arg(0)->Arg(1)->UseRealTime();

@@ -42,18 +42,6 @@ inline void unpackSignature(uint64_t signature, int n, uint8_t* kinds) {
   for (int j = 0; j < n && j < kMaxChainVertices; ++j) kinds[j] = kindAt(signature, j);
 }
 
-// Lens perturbation: applies to every path that fits in a chain.
-// Caustic perturbation: the index s of the vertex it starts from (the first non-specular
-// vertex after the eye's non-specular vertex 1), or -1 when it does not apply (vertex 1 is
-// specular, the source is the environment, or the path is too short).
-int causticSource(const uint8_t* kinds, int n);
-// True for paths L...SDE (vertex 1 non-specular, vertex 2 specular).
-bool isCausticPath(const uint8_t* kinds, int n);
-// The mutation a strategy picks for a path signature; u picks when `Mixed` has two choices.
-// The choice depends on the signature only, which mutations preserve, so the selection
-// probabilities are the same forwards and backwards and cancel in the acceptance ratio.
-MutationKind chooseMutation(MutationStrategy s, const uint8_t* kinds, int n, float u);
-
 // Equal deposition (paper figure 6): a seed of energy e starts floor(u + e / (m e_d)) chains
 // of m steps, each step depositing e_d; u uniform in [0, 1) makes the expectation exact.
 uint32_t chainsForSeed(double energy, double chainLength, double depositEnergy, float u);
@@ -78,22 +66,5 @@ struct FixedTail {
   Color value{1.0f};
   bool known = false;
 };
-// Index of the first tail vertex of a path under a mutation (n: no tail). f reads vertices up
-// to this index (inclusive) when the tail is known.
-int tailStart(MutationKind kind, const uint8_t* kinds, int n);
-// The vertex the lens perturbation connects to (-1: its walk reaches the light by tracing).
-int lensConnectionTarget(const uint8_t* kinds, int n);
-
-// The path's contribution f in the measure the lens perturbation samples: film position for
-// the eye's vertices, solid angle for perturbed directions, area for the vertex connected to
-// (docs/erpt-acceptance.md). RGB; black when the path carries nothing. `tail`: the cached
-// fixed tail (used when known, filled in when not), or null to compute it.
-Color lensContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY,
-                       FixedTail* tail = nullptr);
-// The same in the caustic perturbation's measure: solid angle at the source vertex s.
-Color causticContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY,
-                          FixedTail* tail = nullptr);
-Color contributionFor(MutationKind kind, const MeasureContext& c, const PathVertex* path, int n, float filmX,
-                      float filmY, FixedTail* tail = nullptr);
 
 }  // namespace erpt

@@ -18,11 +18,20 @@ enum class MutationStrategy { Paper, Mixed, LensOnly, CausticOnly };
 // y_i receives e q(x -> y_i) / m; what did not flow stays at x.
 enum class FlowRule { EqualDeposition, DetailedBalance };
 
+// The distribution of the lens perturbation's film position: a square of half-side
+// lensRadius (ERPT) or a disk of radius lensRadius (PMC-ER).
+enum class LensShape { Square, Disk };
+// The caustic perturbation's angle: ERPT's 1/theta on [1e-4, 0.1] rad, or uniform in
+// [0, theta_max] with theta_max from PMC-ER eq. 6 for an image move of lensRadius pixels.
+enum class CausticAngle { Erpt, Veach };
+
 struct ErptSettings {
   int mutationsPerPixel = 100;  // M: sets e_d = n e_ave / M
   int chainLength = 100;        // m: steps of every chain
   float lensRadius = 4.5f;      // half-side of the lens perturbation's film square (9x9 pixels)
   MutationStrategy strategy = MutationStrategy::Paper;
+  LensShape lensShape = LensShape::Square;
+  CausticAngle causticAngle = CausticAngle::Erpt;
   int pilotSpp = 4;             // samples per pixel of the pilot pass estimating e_ave
   bool expectedDeposit = false; // deposit (1 - q) at y and q at z instead of the paper's rule
   int directSamples = 64;       // >= 1: one-bounce paths by a direct-lighting pass (N spp); -1: ERPT does all

@@ -1,26 +1,31 @@
 // ERPT stage kernels. Chain slot i owns row i of the chain, proposal, ray, hit, shadow-ray and
 // deposit queues, and rows [i * kMaxChainVertices, +kMaxChainVertices) of the chain's and the
-// proposal's vertex queues. One chain step is
-//   mutate -> (intersect -> walk)* -> connect (occlusion stream) -> resolve -> accept -> deposit
+// proposal's vertex queues. One chain step (chain_step.h runs it) is
+//   mutate -> (intersect -> trace)* -> connect -> accept -> deposit
 // and every stage runs over an index range of slots (forEachRange spreads it over threads).
 #pragma once
 
 #include <atomic>
 #include <vector>
 
-#include "erpt/erpt_path.h"
+#include "erpt/mutation.h"
 #include "erpt/erpt_settings.h"
 #include "erpt/film.h"
 #include "erpt/seeds.h"
+#include "erpt/tracer.h"
 
 namespace erpt {
 
+// What every stage of a chain step reads: the scene's measure context and ERPT's settings
+// (ErptSettings is the one place for the options and their defaults).
 struct ErptStepContext {
   MeasureContext measure;
-  MutationStrategy strategy = MutationStrategy::Paper;
-  float lensRadius = 4.5f;       // half the side of the film square lens perturbations move in
-  bool expectedDeposit = false;  // deposit (1 - q) at y and q at z instead of all at the chain's path
-  FlowRule flow = FlowRule::EqualDeposition;  // detailed balance: chains never move, deposits as expected values
+  ErptSettings settings;
+  // The mutation units the settings' lens shape and caustic angle choose for the two families.
+  MutationKind lensKind() const { return settings.lensShape == LensShape::Disk ? MutationKind::LensDisk : MutationKind::Lens; }
+  MutationKind causticKind() const {
+    return settings.causticAngle == CausticAngle::Veach ? MutationKind::CausticVeach : MutationKind::Caustic;
+  }
 };
 
 // A chain that has not deposited yet (consecutive-sample filter).
@@ -64,22 +69,38 @@ void loadChainFromSeed(ChainQueue& chains, VertexQueue& chainVertices, size_t sl
 void stageErptMutate(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                      ProposalQueue& proposals, RayQueue& rays, IndexRange range);
 
-// After intersect: checks each walking proposal's hit against the vertex kind the current path
-// has there, stores the new vertex, and either sets the next ray (through a specular chain, or
-// along a perturbed direction) or sets the connection ray in `shadowRays`. Returns how many
-// proposals are still walking.
-size_t stageErptWalk(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
-                     ProposalQueue& proposals, VertexQueue& proposalVertices, RayQueue& rays, const HitQueue& hits,
-                     RayQueue& shadowRays, IndexRange range);
+// Trace stage, after intersect: checks each walking proposal's hit against the vertex kind the
+// current path has there, stores the new vertex, and either sets the next ray (through a
+// specular chain, or along a perturbed direction) or, at the proposal's last regenerated
+// vertex, the connection ray in `shadowRays`. Returns how many proposals are still walking.
+size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+                      ProposalQueue& proposals, VertexQueue& proposalVertices, RayQueue& rays, const HitQueue& hits,
+                      RayQueue& shadowRays, IndexRange range);
 
-// After the occlusion stream: rejects proposals whose connection is blocked.
-void stageErptResolveConnections(const RayQueue& shadowRays, ProposalQueue& proposals, IndexRange range);
+// Connect stage: the occlusion stream for the connection rays of `range`, then rejects the
+// proposals whose connection is blocked.
+void stageErptConnect(const Tracer& tracer, RayQueue& shadowRays, ProposalQueue& proposals, IndexRange range);
 
-// Acceptance q = min(1, f(z) / f(y)) on luminance in the mutation's measure, the accept
-// decision, the step's deposit record(s), and the chain update.
+// Accept stage: q = min(1, f(z) T(z -> y) / (f(y) T(y -> z))) on luminance in the mutation's
+// measure, the coin, the step's deposit record(s) (erpt_deposit.cpp's rule), and the chain
+// update.
 void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue& chainVertices,
                      ProposalQueue& proposals, const VertexQueue& proposalVertices, DepositQueue& deposits,
                      ErptCounters& counters, IndexRange range);
+
+// A path's film position and colour rgb(f) / lum(f), as a deposit sees it.
+struct StepDeposit {
+  float filmX, filmY;
+  Color color;
+};
+// The deposit rule (erpt_deposit.cpp): the records one step of a chain leaves in row i, from
+// the path before the step, the proposal (colour black when rejected before acceptance), q,
+// whether the chain moved, and the chain's energy per step. The paper's rule: e_d at the
+// chain's path after the step; expected values (and detailed balance, which never moves):
+// (1 - q) e at the path before and q e at the proposal.
+void writeStepDeposits(const ErptSettings& s, const StepDeposit& before, const StepDeposit& proposal, float q,
+                       bool moved, float energy, DepositQueue& deposits, size_t i);
+void clearStepDeposits(DepositQueue& deposits, size_t i);
 
 // The deposit stage's noise filters (paper section 4.4; both biased, both off by default).
 struct DepositFilters {

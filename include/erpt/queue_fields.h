@@ -139,11 +139,11 @@
   F(uint8_t, vertexCount, "vertices of the current path, eye and light included") \
   F(uint64_t, signature, "vertex kinds of the current path, 4 bits each (erpt_path.h)") \
   F(float, fLum, "lum(f) of the current path in the measure of mutation fKind (a cache)") \
-  F(uint8_t, fKind, "MutationKind fLum belongs to; None: not known") \
+  F(uint8_t, fKind, "MutationKind whose measure fLum is in (Mutation::measure); None: not known") \
   F(float, tailR, "fixed tail of f for mutation tailKind (erpt_path.h), red") \
   F(float, tailG, "green")                                                   \
   F(float, tailB, "blue")                                                    \
-  F(uint8_t, tailKind, "MutationKind the tail belongs to; None: not known")  \
+  F(uint8_t, tailKind, "MutationKind whose measure the tail is in (Mutation::measure); None: not known") \
   F(float, filmX, "film position of the current path, x in pixels")          \
   F(float, filmY, "y")                                                       \
   F(float, colorR, "rgb(f) / lum(f) of the current path, red")               \
@@ -158,9 +158,13 @@
 // chain's.
 #define ERPT_PROPOSAL_FIELDS(F)                                               \
   F(uint8_t, mutation, "MutationKind chosen for this step")                  \
+  F(float, perturbSize, "perturbation size of this proposal: lens square half-side or disk radius, caustic angle range, in pixels") \
   F(uint8_t, state, "ProposalState: walking, connecting, complete or rejected") \
   F(uint8_t, reason, "RejectReason when rejected")                           \
   F(int8_t, cursor, "index of the vertex the ray in flight will produce")    \
+  F(int8_t, walk, "+1: the walk goes from the eye towards the light; -1: towards the eye") \
+  F(int8_t, regenFirst, "first vertex the proposal regenerates (the mutation's start writes it)") \
+  F(int8_t, regenLast, "last vertex the proposal regenerates")               \
   F(int8_t, connectTo, "fixed vertex the last regenerated one connects to (0: the eye), -1: none") \
   F(float, filmX, "film position of the proposed path, x")                   \
   F(float, filmY, "y")                                                       \

@@ -21,7 +21,7 @@ struct RenderArgs {
   std::vector<std::string> defines;
   bool quiet = false;
   ErptSettings erpt;
-  std::string strategy = "paper", deposit = "paper", flow = "equal-deposition";
+  std::string strategy = "paper", deposit = "paper", flow = "equal-deposition", lensShape = "square", causticAngle = "erpt";
   bool pmFilter = false;
   double time = 0;
 };

@@ -41,6 +41,10 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
       ->check(CLI::Range(0.01, 10000.0));
   cmd->add_option("--mutation-strategy", a.strategy, "ERPT: paper (caustic for L...SDE paths, lens otherwise), mixed (a coin when both apply), lens or caustic (one kind only)")
       ->check(CLI::IsMember({"paper", "mixed", "lens", "caustic"}));
+  cmd->add_option("--lens-shape", a.lensShape, "ERPT: lens perturbations move the film position uniformly in a square of half-side --lens-radius (square, the paper's) or in a disk of that radius (disk, PMC-ER's)")
+      ->check(CLI::IsMember({"square", "disk"}));
+  cmd->add_option("--caustic-angle", a.causticAngle, "ERPT: caustic perturbation angle: erpt (density 1/theta on [1e-4, 0.1] rad) or veach (uniform in [0, theta_max], PMC-ER eq. 6, for an image move of --lens-radius pixels)")
+      ->check(CLI::IsMember({"erpt", "veach"}));
   cmd->add_option("--pilot-spp", e.pilotSpp, "ERPT: samples per pixel of the pilot pass estimating e_ave")
       ->check(CLI::Range(1, 1 << 16));
   cmd->add_option("--deposit", a.deposit, "ERPT: paper (all of a step's energy at the chain's path) or expected ((1-q) at y, q at z)")
@@ -94,6 +98,8 @@ RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
                     : a.strategy == "caustic" ? MutationStrategy::CausticOnly
                                               : MutationStrategy::Paper;
   s.erpt.expectedDeposit = a.deposit == "expected";
+  s.erpt.lensShape = a.lensShape == "disk" ? LensShape::Disk : LensShape::Square;
+  s.erpt.causticAngle = a.causticAngle == "veach" ? CausticAngle::Veach : CausticAngle::Erpt;
   s.erpt.flow = a.flow == "detailed-balance" ? FlowRule::DetailedBalance : FlowRule::EqualDeposition;
   if (a.pmFilter && s.erpt.pmFilterRadius < 0) s.erpt.pmFilterRadius = 3;
   s.timeBudget = a.time;

@@ -95,31 +95,6 @@ uint64_t packSignature(const uint8_t* kinds, int n) {
   return s;
 }
 
-int causticSource(const uint8_t* kinds, int n) {
-  if (n < 3 || kinds[1] != kNonSpecularVertex) return -1;
-  int s = 2;
-  while (s < n && kinds[s] == kSpecularVertex) ++s;
-  if (s >= n || kinds[s] == kEnvironmentVertex) return -1;
-  return s;
-}
-
-bool isCausticPath(const uint8_t* kinds, int n) {
-  return n >= 4 && kinds[1] == kNonSpecularVertex && kinds[2] == kSpecularVertex && causticSource(kinds, n) > 0;
-}
-
-MutationKind chooseMutation(MutationStrategy s, const uint8_t* kinds, int n, float u) {
-  if (n < 2 || n > kMaxChainVertices) return MutationKind::None;
-  const bool caustic = causticSource(kinds, n) > 0;
-  switch (s) {
-    case MutationStrategy::Paper: return isCausticPath(kinds, n) ? MutationKind::Caustic : MutationKind::Lens;
-    case MutationStrategy::Mixed:
-      return caustic && u < 0.5f ? MutationKind::Caustic : MutationKind::Lens;
-    case MutationStrategy::LensOnly: return MutationKind::Lens;
-    case MutationStrategy::CausticOnly: return caustic ? MutationKind::Caustic : MutationKind::None;
-  }
-  return MutationKind::None;
-}
-
 uint32_t chainsForSeed(double energy, double chainLength, double depositEnergy, float u) {
   const double expected = energy / (chainLength * depositEnergy);
   if (!(expected >= 0)) return 0;

@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "erpt/chain_step.h"
 #include "erpt/rng.h"
 
 namespace erpt {
@@ -42,11 +43,12 @@ InPlaceReason ErptChains::inPlaceReason(const SeedStore& store, size_t i) const 
   // Every mutation the strategy may pick for this signature (the choice depends on the
   // signature only, which mutations preserve) must see a path of positive, finite f: a chain
   // standing on a zero of its target would accept anything.
-  const MutationKind choices[] = {chooseMutation(config_.step.strategy, kinds, int(n), 0.0f),
-                                  chooseMutation(config_.step.strategy, kinds, int(n), 0.999f)};
+  const MutationKind choices[] = {chooseMutation(config_.step.settings.strategy, kinds, int(n), 0.0f),
+                                  chooseMutation(config_.step.settings.strategy, kinds, int(n), 0.999f)};
   if (choices[0] == MutationKind::None && choices[1] == MutationKind::None) return kInPlaceNoMutation;
-  for (MutationKind kind : choices) {
-    if (kind == MutationKind::None) continue;
+  for (MutationKind family : choices) {
+    if (family == MutationKind::None) continue;
+    const MutationKind kind = family == MutationKind::Lens ? config_.step.lensKind() : config_.step.causticKind();
     const float f = luminance(contributionFor(kind, config_.step.measure, path, int(n), store.seeds.filmX[i],
                                               store.seeds.filmY[i]));
     if (!(f > 0) || !std::isfinite(f)) return kInPlaceZeroContribution;
@@ -60,7 +62,7 @@ void ErptChains::consume(const SeedStore& batch) {
   pendingNext_ = 0;
   const double ed = config_.depositEnergy;
   const double m = config_.chainLength;
-  const bool detailedBalance = config_.step.flow == FlowRule::DetailedBalance;
+  const bool detailedBalance = config_.step.settings.flow == FlowRule::DetailedBalance;
   // Which seeds can start moving chains: f in each mutation's measure, in parallel.
   inPlace_.assign(batch.size(), uint8_t(kInPlaceReasonCount));
   forEachRange("erpt seed check", batch.size(), kGrain, [&](IndexRange r) {
@@ -144,36 +146,9 @@ void ErptChains::depositInPlace(const SeedStore& store, size_t seed, InPlaceReas
 void ErptChains::step() {
   const size_t c = q_.chains.size();
   const ErptStepContext& ctx = config_.step;
-  std::atomic<size_t> walking{0}, rays{0};
-  forEachRange("erpt mutate", c, kGrain, [&](IndexRange r) {
-    stageErptMutate(ctx, q_.chains, q_.chainVertices, q_.proposals, q_.rays, r);
-    for (size_t i = r.begin; i < r.end; ++i) disableRay(q_.shadowRays, i);
-  }, &times_);
-  for (int pass = 0; pass < kMaxChainVertices; ++pass) {
-    forEachRange("erpt intersect", c, kGrain, [&](IndexRange r) {
-      size_t traced = 0;
-      for (size_t i = r.begin; i < r.end; ++i) traced += q_.rays.tnear[i] <= q_.rays.tfar[i];
-      rays += traced;
-      // Later passes carry only the proposals still walking a specular chain: ranges without
-      // any are not handed to Embree (their hits are not read).
-      if (traced > 0) tracer_.intersect(q_.rays, q_.hits, r, RayCoherence::Incoherent);
-    }, &times_);
-    forEachRange("erpt walk", c, kGrain, [&](IndexRange r) {
-      walking += stageErptWalk(ctx, q_.chains, q_.chainVertices, q_.proposals, q_.proposalVertices, q_.rays, q_.hits, q_.shadowRays, r);
-    }, &times_);
-    if (walking.exchange(0) == 0) break;
-  }
-  forEachRange("erpt connect", c, kGrain, [&](IndexRange r) {
-    size_t traced = 0;
-    for (size_t i = r.begin; i < r.end; ++i) traced += q_.shadowRays.tnear[i] <= q_.shadowRays.tfar[i];
-    rays += traced;
-    if (traced > 0) tracer_.occluded(q_.shadowRays, r);
-    stageErptResolveConnections(q_.shadowRays, q_.proposals, r);
-  }, &times_);
+  const ChainStep chainStep{tracer_, ctx, &times_, kGrain};
+  const uint64_t rays = chainStep.run(q_, counters_);
   stats_.rays += rays;
-  forEachRange("erpt accept", c, kGrain, [&](IndexRange r) {
-    stageErptAccept(ctx, q_.chains, q_.chainVertices, q_.proposals, q_.proposalVertices, q_.deposits, counters_, r);
-  }, &times_);
   auto start = std::chrono::steady_clock::now();
   deposited_ += applyDeposits(q_.chains, q_.proposals, q_.deposits, IndexRange{0, c}, ctx.measure.film, film_, filters_);
   times_.add("erpt deposit", secondsSince(start));

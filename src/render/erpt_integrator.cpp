@@ -76,8 +76,7 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
   RenderSetup setup(scene, s);
   FilmDensity density(setup.filter, s.width, s.height);
   ErptChains::Config config{
-      ErptStepContext{MeasureContext{scene, setup.lights, setup.camera, density}, o.strategy, o.lensRadius,
-                      o.expectedDeposit, o.flow},
+      ErptStepContext{MeasureContext{scene, setup.lights, setup.camera, density}, o},
       uint32_t(o.chainLength), s.seed, o.directSamples > 0,
       // Chain slots: 1024 per thread keeps a step's working set (chain and proposal vertices,
       // ~1.4 MB) in cache; larger queues measured up to 2x slower on this machine.

@@ -19,6 +19,35 @@ uint32_t pixelCode(float x, float y) {
 
 }  // namespace
 
+namespace {
+
+void writeRecord(DepositQueue& d, size_t i, int which, float x, float y, Color c) {
+  if (which == 0) {
+    d.x0[i] = x, d.y0[i] = y, d.r0[i] = c.x, d.g0[i] = c.y, d.b0[i] = c.z;
+  } else {
+    d.x1[i] = x, d.y1[i] = y, d.r1[i] = c.x, d.g1[i] = c.y, d.b1[i] = c.z;
+  }
+}
+
+}  // namespace
+
+void clearStepDeposits(DepositQueue& deposits, size_t i) {
+  writeRecord(deposits, i, 0, 0, 0, Color(0.0f));
+  writeRecord(deposits, i, 1, 0, 0, Color(0.0f));
+}
+
+void writeStepDeposits(const ErptSettings& s, const StepDeposit& before, const StepDeposit& proposal, float q,
+                       bool moved, float energy, DepositQueue& deposits, size_t i) {
+  // Detailed balance (section 3.1): the mutation receives e q / m, the rest stays at x.
+  if (s.expectedDeposit || s.flow == FlowRule::DetailedBalance) {
+    writeRecord(deposits, i, 0, before.filmX, before.filmY, before.color * (energy * (1 - q)));
+    if (q > 0) writeRecord(deposits, i, 1, proposal.filmX, proposal.filmY, proposal.color * (energy * q));
+    return;
+  }
+  const StepDeposit& at = moved ? proposal : before;
+  writeRecord(deposits, i, 0, at.filmX, at.filmY, at.color * energy);
+}
+
 double applyDeposits(ChainQueue& chains, const ProposalQueue& proposals, const DepositQueue& deposits, IndexRange range,
                      const FilmDensity& density, Film& film, DepositFilters& filters) {
   double total = 0;

@@ -68,10 +68,13 @@ void stageErptMutate(const ErptStepContext& ctx, const ChainQueue& chains, const
                      ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
   const MeasureContext& mc = ctx.measure;
   uint8_t kinds[kMaxChainVertices];
+  PathVertex y[kMaxChainVertices];
   for (size_t i = range.begin; i < range.end; ++i) {
     proposals.mutation[i] = uint8_t(MutationKind::None);
     proposals.reason[i] = kRejectNone;
     proposals.connectTo[i] = -1;
+    proposals.regenFirst[i] = 1;
+    proposals.regenLast[i] = 0;
     proposals.acceptance[i] = 0;
     if (chains.stepsLeft[i] == 0) {
       reject(proposals, rays, i, kRejectNone);
@@ -81,37 +84,40 @@ void stageErptMutate(const ErptStepContext& ctx, const ChainQueue& chains, const
     unpackSignature(chains.signature[i], n, kinds);
     const uint64_t key = chains.key[i];
     const uint32_t step = chains.step[i];
-    const MutationKind kind = chooseMutation(ctx.strategy, kinds, n, uniformFloat(key, stepDim(step, kDimStrategy)));
-    proposals.mutation[i] = uint8_t(kind);
-    proposals.state[i] = kProposalWalking;
-    const float u1 = uniformFloat(key, stepDim(step, kDimStart1)), u2 = uniformFloat(key, stepDim(step, kDimStart2));
-    if (kind == MutationKind::Lens) {
-      // Uniform in a square around the current film position: symmetric (rule 1).
-      const float fx = chains.filmX[i] + (2 * u1 - 1) * ctx.lensRadius;
-      const float fy = chains.filmY[i] + (2 * u2 - 1) * ctx.lensRadius;
-      proposals.filmX[i] = fx;
-      proposals.filmY[i] = fy;
-      if (!(mc.film.density(fx, fy) > 0)) {
-        reject(proposals, rays, i, kRejectOffFilm);
-        continue;
-      }
-      const Camera::Ray r = mc.camera.generateRay(fx, fy);
-      setRay(rays, i, r.origin, r.direction, r.tnear, r.tfar);
-      proposals.cursor[i] = 1;
-    } else if (kind == MutationKind::Caustic) {
-      const int s = causticSource(kinds, n);
-      const size_t base = i * kMaxChainVertices;
-      const PathVertex src = loadVertex(chainVertices, base + size_t(s));
-      const PathVertex towards = loadVertex(chainVertices, base + size_t(s - 1));
-      const Vec3 d = perturbDirection(directionBetween(src, towards), u1, u2);
-      const bool pointLight = src.kind == kLightVertex && src.emitter >= 0 &&
-                              mc.scene.emitters[size_t(src.emitter)].kind == EmitterKind::Point;
-      setRay(rays, i, pointLight ? src.p : offsetOrigin(src.p, src.ng, d), d, 0.0f,
-             std::numeric_limits<float>::infinity());
-      proposals.cursor[i] = int8_t(s - 1);
-    } else {
+    // The strategy picks the family, the settings the unit; the one dispatch on the kind.
+    const MutationKind family =
+        chooseMutation(ctx.settings.strategy, kinds, n, uniformFloat(key, stepDim(step, kDimStrategy)));
+    if (family == MutationKind::None) {
       reject(proposals, rays, i, kRejectNoMutation);
+      continue;
     }
+    const MutationKind kind = family == MutationKind::Lens ? ctx.lensKind() : ctx.causticKind();
+    const Mutation& unit = mutationOf(kind);
+    const float size = ctx.settings.lensRadius;
+    proposals.mutation[i] = uint8_t(kind);
+    proposals.perturbSize[i] = size;
+    proposals.state[i] = kProposalWalking;
+    // Lens starts read the film position and signature only; caustic starts read the vertices
+    // from the eye to the source (loading a whole path per slot is what this stage costs most).
+    if (family == MutationKind::Caustic) loadChainPath(chains, chainVertices, i, y);
+    const CurrentPath current{y, kinds, n, chains.filmX[i], chains.filmY[i]};
+    ProposalStart start;
+    start.filmX = chains.filmX[i];
+    start.filmY = chains.filmY[i];
+    unit.start(mc, current, size, uniformFloat(key, stepDim(step, kDimStart1)), uniformFloat(key, stepDim(step, kDimStart2)),
+               start);
+    proposals.filmX[i] = start.filmX;
+    proposals.filmY[i] = start.filmY;
+    if (start.reject != kRejectNone) {
+      reject(proposals, rays, i, start.reject);
+      continue;
+    }
+    proposals.cursor[i] = int8_t(start.cursor);
+    proposals.walk[i] = int8_t(start.walk);
+    proposals.regenFirst[i] = int8_t(start.regenFirst);
+    proposals.regenLast[i] = int8_t(start.regenLast);
+    proposals.connectTo[i] = int8_t(start.connectTo);
+    setRay(rays, i, start.origin, start.direction, start.tnear, start.tfar);
   }
 }
 

@@ -69,7 +69,7 @@ TEST(NoiseFilters, ConsecutiveSampleFilterCapsRunsOnOnePixel) {
     ChainQueues q(1024);
     const size_t loaded = q.loadSeeds(w, kSteps, 1.0f, 5);
     ErptStepContext ctx = w.stepContext(MutationStrategy::LensOnly);
-    ctx.lensRadius = 0.4f;
+    ctx.settings.lensRadius = 0.4f;
     DepositFilters filters;
     filters.maxConsecutive = maxConsecutive;
     Film film(w.width, w.height);
@@ -169,7 +169,7 @@ TEST(DetailedBalanceFlow, MutationsReceiveTheAcceptedShareAndTheSeedKeepsTheRest
   ChainQueues q(1024);
   const size_t loaded = q.loadSeeds(w, 4, 0.25f, 6);
   ErptStepContext ctx = w.stepContext(MutationStrategy::Paper);
-  ctx.flow = FlowRule::DetailedBalance;
+  ctx.settings.flow = FlowRule::DetailedBalance;
   q.propose(w, ctx);
   const ChainQueue before = q.chains;
   ErptCounters counters;

@@ -1,5 +1,6 @@
 #include "support/erpt_world.h"
 
+#include "erpt/chain_step.h"
 #include "erpt/render.h"
 #include "erpt/rng.h"
 
@@ -26,7 +27,7 @@ ErptWorld::ErptWorld(const std::string& sceneFile, int size, int spp, FilterKind
 
 ErptStepContext ErptWorld::stepContext(MutationStrategy strategy) const {
   ErptStepContext c{measure()};
-  c.strategy = strategy;
+  c.settings.strategy = strategy;
   return c;
 }
 
@@ -47,15 +48,7 @@ size_t ChainQueues::loadSeeds(const ErptWorld& w, uint32_t chainLength, float en
 }
 
 void ChainQueues::propose(const ErptWorld& world, const ErptStepContext& ctx) {
-  const IndexRange all{0, chains.size()};
-  stageErptMutate(ctx, chains, chainVertices, proposals, rays, all);
-  for (size_t i = 0; i < all.end; ++i) disableRay(shadowRays, i);
-  for (int pass = 0; pass < kMaxChainVertices; ++pass) {
-    world.tracer->intersect(rays, hits, all, RayCoherence::Incoherent);
-    if (stageErptWalk(ctx, chains, chainVertices, proposals, proposalVertices, rays, hits, shadowRays, all) == 0) break;
-  }
-  world.tracer->occluded(shadowRays, all);
-  stageErptResolveConnections(shadowRays, proposals, all);
+  ChainStep{*world.tracer, ctx}.propose(*this);
 }
 
 }  // namespace erpt::test

@@ -30,15 +30,15 @@ struct ErptWorld {
   int seedPath(size_t seed, PathVertex* out) const;
 };
 
-// The library's chain queues, and one chain step run stage by stage (as ErptChains
-// does) so tests can look between the stages.
+// The library's chain queues, and the library's chain step stopped before accept, so tests can
+// look between the stages.
 struct ChainQueues : ErptQueues {
   using ErptQueues::ErptQueues;
   // Starts chains in slots 0, 1, ... at the world's seeds in order, skipping seeds too long
   // for a chain or without energy, until the queue is full; chain keys streamKey(keySeed,
   // seed, 0). Returns how many were loaded.
   size_t loadSeeds(const ErptWorld& world, uint32_t chainLength, float energyPerStep, uint64_t keySeed);
-  // mutate -> (intersect -> walk)* -> connect; stops before accept.
+  // ChainStep::propose: mutate -> (intersect -> trace)* -> connect; stops before accept.
   void propose(const ErptWorld& world, const ErptStepContext& ctx);
 };
 

@@ -1,6 +1,10 @@
-// ERPT walk stage: one bounce of every walking proposal. A lens proposal walks from the eye
-// towards the light, a caustic proposal from its source vertex towards the eye; both must
-// meet the same kinds of vertices as the current path and take the same specular lobes.
+// ERPT trace stage: one bounce of every walking proposal, after the intersect stream. The walk
+// is the same for every mutation: from `cursor` in direction `walk` it must meet the current
+// path's kinds of vertices and take its specular lobes; at non-specular vertices before the
+// last regenerated one it perturbs the direction (the lens perturbation's D vertices followed
+// by S); at the last regenerated vertex it connects to `connectTo` (the eye: film position by
+// projection; a fixed vertex), or, with nothing to connect to, it must have traced into the
+// light. The mutation's start wrote these numbers (mutation.h).
 #include "erpt/bsdf.h"
 #include "erpt/erpt_stages.h"
 #include "erpt/rng.h"
@@ -17,6 +21,11 @@ void reject(ProposalQueue& p, RayQueue& rays, size_t i, RejectReason why) {
   disableRay(rays, i);
 }
 
+void complete(ProposalQueue& p, RayQueue& rays, size_t i) {
+  p.state[i] = kProposalComplete;
+  disableRay(rays, i);
+}
+
 // Sets the occlusion ray between two points; `toInfinity` follows `dir` out of the scene.
 void setConnection(RayQueue& shadowRays, size_t i, const PathVertex& from, Vec3 to, bool toInfinity, Vec3 dir) {
   Vec3 origin = offsetOrigin(from.p, from.ng, dir);
@@ -26,9 +35,9 @@ void setConnection(RayQueue& shadowRays, size_t i, const PathVertex& from, Vec3 
 
 }  // namespace
 
-size_t stageErptWalk(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
-                     ProposalQueue& proposals, VertexQueue& proposalVertices, RayQueue& rays, const HitQueue& hits,
-                     RayQueue& shadowRays, IndexRange range) {
+size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+                      ProposalQueue& proposals, VertexQueue& proposalVertices, RayQueue& rays, const HitQueue& hits,
+                      RayQueue& shadowRays, IndexRange range) {
   const MeasureContext& mc = ctx.measure;
   const Scene& scene = mc.scene;
   size_t walking = 0;
@@ -36,8 +45,10 @@ size_t stageErptWalk(const ErptStepContext& ctx, const ChainQueue& chains, const
     if (proposals.state[i] != kProposalWalking) continue;
     disableRay(shadowRays, i);
     const int n = chains.vertexCount[i];
-    const int j = proposals.cursor[i];
-    const bool lens = proposals.mutation[i] == uint8_t(MutationKind::Lens);
+    const int j = proposals.cursor[i], walk = proposals.walk[i];
+    // The walk ends at the far end of the regenerated range from where it started.
+    const bool last = j == (walk > 0 ? proposals.regenLast[i] : proposals.regenFirst[i]);
+    const int connectTo = proposals.connectTo[i];
     // The current path's vertices j - 1, j, j + 1 (all a walk step looks at).
     const size_t chainRow = i * kMaxChainVertices + size_t(j);
     PathVertex window[3];
@@ -46,11 +57,14 @@ size_t stageErptWalk(const ErptStepContext& ctx, const ChainQueue& chains, const
     const PathVertex& expected = window[1];
     const Vec3 origin{rays.orgX[i], rays.orgY[i], rays.orgZ[i]};
     const Vec3 dir = normalize(Vec3{rays.dirX[i], rays.dirY[i], rays.dirZ[i]});
-    const size_t row = i * kMaxChainVertices + size_t(j);
+    const size_t row = chainRow;
+    // Reaching the light by tracing ends the walk only where the proposal has nothing to
+    // connect to.
+    const bool tracesToLight = last && connectTo < 0;
 
     PathVertex z;
     if (hits.geomID[i] == kNoHit) {
-      if (!lens || expected.kind != kEnvironmentVertex) {
+      if (!tracesToLight || expected.kind != kEnvironmentVertex) {
         reject(proposals, rays, i, kRejectMissed);
         continue;
       }
@@ -59,8 +73,7 @@ size_t stageErptWalk(const ErptStepContext& ctx, const ChainQueue& chains, const
       z.kind = kEnvironmentVertex;
       z.emitter = expected.emitter;
       storeVertex(proposalVertices, row, z);
-      proposals.state[i] = kProposalComplete;
-      disableRay(rays, i);
+      complete(proposals, rays, i);
       continue;
     }
     const SurfacePoint sp = surfaceAt(scene.mesh, hits.primID[i], hits.u[i], hits.v[i]);
@@ -75,14 +88,12 @@ size_t stageErptWalk(const ErptStepContext& ctx, const ChainQueue& chains, const
     z.emitter = scene.mesh.emitter[sp.triangle];
 
     if (expected.kind == kLightVertex) {
-      // Only a lens walk reaches the light by tracing (the path's last vertex).
-      if (!lens || j != n - 1 || isBlack(mc.lights.emitted(sp.triangle, -dir))) {
+      if (!tracesToLight || isBlack(mc.lights.emitted(sp.triangle, -dir))) {
         reject(proposals, rays, i, kRejectKindChanged);
         continue;
       }
       storeVertex(proposalVertices, row, z);
-      proposals.state[i] = kProposalComplete;
-      disableRay(rays, i);
+      complete(proposals, rays, i);
       continue;
     }
     // Specular vertices need a Dirac lobe (plastic's coat has one too), non-specular ones a
@@ -99,22 +110,33 @@ size_t stageErptWalk(const ErptStepContext& ctx, const ChainQueue& chains, const
     if (expected.kind == kSpecularVertex) {
       // Follow the same lobe (reflection or transmission) as the current path.
       Vec3 wo;
-      const Vec3 wiLocal = sp.shading.toLocal(-dir);
-      if (!specularDirection(m, wiLocal, reflectsAt(window, 1), wo)) {
+      if (last || !specularDirection(m, sp.shading.toLocal(-dir), reflectsAt(window, 1), wo)) {
         reject(proposals, rays, i, kRejectKindChanged);
         continue;
       }
       const Vec3 next = sp.shading.toWorld(wo);
       setRay(rays, i, offsetOrigin(sp.position, sp.geometricNormal, next), next, 0.0f,
              std::numeric_limits<float>::infinity());
-      proposals.cursor[i] = int8_t(lens ? j + 1 : j - 1);
+      proposals.cursor[i] = int8_t(j + walk);
       ++walking;
       continue;
     }
 
     // A non-specular vertex.
-    if (!lens) {
-      // Caustic: this is vertex 1; connect it to the eye (rule 5).
+    if (!last) {
+      // Perturb the current path's direction here and walk on through the specular chain.
+      const PathVertex& next = window[1 + walk];
+      const uint64_t key = chains.key[i];
+      const uint32_t step = chains.step[i];
+      const Vec3 d = perturbDirection(directionBetween(window[1], next), uniformFloat(key, stepDim(step, kDimPerturb + 2 * j)),
+                                      uniformFloat(key, stepDim(step, kDimPerturb + 2 * j + 1)));
+      setRay(rays, i, offsetOrigin(z.p, z.ng, d), d, 0.0f, std::numeric_limits<float>::infinity());
+      proposals.cursor[i] = int8_t(j + walk);
+      ++walking;
+      continue;
+    }
+    if (connectTo == 0) {
+      // Connect to the eye (rule 5): the film position is where z projects.
       float fx, fy;
       if (!mc.camera.project(z.p, fx, fy) || !(mc.film.density(fx, fy) > 0)) {
         reject(proposals, rays, i, kRejectOffFilm);
@@ -124,45 +146,20 @@ size_t stageErptWalk(const ErptStepContext& ctx, const ChainQueue& chains, const
       proposals.filmY[i] = fy;
       const Vec3 eye = mc.camera.position();
       setConnection(shadowRays, i, z, eye, false, normalize(eye - z.p));
-      proposals.connectTo[i] = 0;
-      proposals.state[i] = kProposalConnecting;
-      disableRay(rays, i);
+    } else if (connectTo > 0) {
+      // Connect to the current path's fixed vertex, which stays where it is.
+      const PathVertex target = loadVertex(chainVertices, i * kMaxChainVertices + size_t(connectTo));
+      const bool environment = target.kind == kEnvironmentVertex;
+      const Vec3 d = environment ? -target.ns : normalize(target.p - z.p);
+      setConnection(shadowRays, i, z, environment ? Vec3(0.0f) : offsetOrigin(target.p, target.ng, -d), environment, d);
+    } else {
+      reject(proposals, rays, i, kRejectKindChanged);  // the walk should have reached the light
       continue;
     }
-    const PathVertex& next = window[2];
-    if (next.kind == kSpecularVertex) {
-      // Perturb the current path's direction here and walk through the next specular chain.
-      const uint64_t key = chains.key[i];
-      const uint32_t step = chains.step[i];
-      const Vec3 d = perturbDirection(directionBetween(window[1], next), uniformFloat(key, stepDim(step, kDimPerturb + 2 * j)),
-                                      uniformFloat(key, stepDim(step, kDimPerturb + 2 * j + 1)));
-      setRay(rays, i, offsetOrigin(z.p, z.ng, d), d, 0.0f, std::numeric_limits<float>::infinity());
-      proposals.cursor[i] = int8_t(j + 1);
-      ++walking;
-      continue;
-    }
-    // Two non-specular vertices in a row (or the light): connect to the current path's next
-    // vertex, which stays where it is.
-    const bool environment = next.kind == kEnvironmentVertex;
-    const Vec3 d = environment ? -next.ns : normalize(next.p - z.p);
-    setConnection(shadowRays, i, z, environment ? Vec3(0.0f) : offsetOrigin(next.p, next.ng, -d), environment, d);
-    proposals.connectTo[i] = int8_t(j + 1);
     proposals.state[i] = kProposalConnecting;
     disableRay(rays, i);
   }
   return walking;
-}
-
-void stageErptResolveConnections(const RayQueue& shadowRays, ProposalQueue& proposals, IndexRange range) {
-  for (size_t i = range.begin; i < range.end; ++i) {
-    if (proposals.state[i] != kProposalConnecting) continue;
-    if (shadowRays.tfar[i] >= 0) {
-      proposals.state[i] = kProposalComplete;
-    } else {
-      proposals.state[i] = kProposalRejected;
-      proposals.reason[i] = kRejectOccluded;
-    }
-  }
 }
 
 }  // namespace erpt

@@ -1,0 +1,36 @@
+// One step of every chain in an ErptQueues, the only implementation of the protocol
+//   mutate -> (intersect -> trace)* -> connect -> accept
+// (erpt_stages.h), used by the ERPT chain machine, the stage tests and the benchmark. Each
+// stage runs over the whole queue split into ranges across threads; intersect and connect hand
+// Embree only the ranges that have rays in flight. The deposit records are left in the
+// queue's deposit rows for the caller (the chain machine applies them to the film in slot
+// order, so the image does not depend on the thread count).
+#pragma once
+
+#include <cstdint>
+
+#include "erpt/erpt_stages.h"
+#include "erpt/parallel.h"
+#include "erpt/tracer.h"
+
+namespace erpt {
+
+
+struct ChainStep {
+  const Tracer& tracer;
+  const ErptStepContext& ctx;
+  StageTimes* times = nullptr;  // per-stage seconds, when set
+  size_t grain = 256;           // slots per range
+
+  // mutate -> (intersect -> trace)* -> connect; returns the rays traced.
+  uint64_t propose(ErptQueues& q) const;
+  // accept (and the step's deposit records).
+  void accept(ErptQueues& q, ErptCounters& counters) const;
+  uint64_t run(ErptQueues& q, ErptCounters& counters) const {
+    const uint64_t rays = propose(q);
+    accept(q, counters);
+    return rays;
+  }
+};
+
+}  // namespace erpt

@@ -1,0 +1,94 @@
+// The mutation engine's unit: one Mutation per MutationKind (erpt_kinds.h), each defined in
+// its own file under src/mutations/, in the spirit of Mitsuba 0.6's Mutator (suitability,
+// sample, Q). A unit says
+//   - when it applies to a path (its signature of vertex kinds),
+//   - how a proposal starts: the perturbation it samples, the first ray, and the range of
+//     vertices the proposal regenerates (written once into the proposal columns; the trace,
+//     connect and accept stages read it from there),
+//   - the path contribution f in its own measure (the measure it samples in),
+//   - the ratio of transition densities T(z -> y) / T(y -> z) (0: the reverse move is
+//     impossible), which the accept stage multiplies in.
+// How a proposal advances through a specular chain is the same for every unit (the trace
+// stage follows the current path's lobes from `cursor` in direction `walk` until it reaches
+// regenLast, then connects to `connectTo`), so a unit describes it by those numbers only.
+//
+// Adding a mutation: an enum entry in erpt_kinds.h, one file in src/mutations/ defining its
+// Mutation, and its line in mutation_table.cpp.
+#pragma once
+
+#include <limits>
+
+#include "erpt/erpt_path.h"
+
+namespace erpt {
+
+// What a mutation's start writes for one proposal.
+struct ProposalStart {
+  Vec3 origin, direction;  // the first ray
+  float tnear = 0, tfar = std::numeric_limits<float>::infinity();
+  float filmX = 0, filmY = 0;  // the proposal's film position when the start fixes it (lens)
+  int cursor = 1;              // the vertex the first ray produces
+  int walk = +1;               // +1: walks from the eye towards the light; -1: towards the eye
+  int regenFirst = 1, regenLast = 0;  // vertices [regenFirst, regenLast] are regenerated
+  // What the last regenerated vertex connects to: 0 the eye (its film position is found by
+  // projection), k > 0 the fixed vertex k, -1 nothing (the walk reaches the light by tracing).
+  int connectTo = -1;
+  RejectReason reject = kRejectNone;  // set when the proposal is impossible from the start
+};
+
+// Everything a unit reads about the chain's current path y.
+struct CurrentPath {
+  const PathVertex* vertices;
+  const uint8_t* kinds;
+  int n;
+  float filmX, filmY;
+};
+
+struct Mutation {
+  MutationKind kind;
+  // The unit whose contribution measure this one samples in (equal for units that differ only
+  // in their perturbation's distribution): f and the fixed tail are cached per measure.
+  MutationKind measure;
+  bool (*applies)(const uint8_t* kinds, int n);
+  // Samples a proposal from y with perturbation size `size` (pixels) and uniforms u1, u2.
+  void (*start)(const MeasureContext& c, const CurrentPath& y, float size, float u1, float u2, ProposalStart& out);
+  // First vertex of the fixed tail (erpt_path.h): f reads vertices up to it (inclusive) when
+  // the tail is cached; n: no tail.
+  int (*tailStart)(const uint8_t* kinds, int n);
+  Color (*contribution)(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY,
+                        FixedTail* tail);
+  // T(z -> y) / T(y -> z) for a proposal z of y made with `size`; 0 when z cannot propose y.
+  float (*transitionRatio)(const MeasureContext& c, const CurrentPath& y, const CurrentPath& z, float size);
+};
+
+// The unit of a kind (None has no unit: a chain that cannot move).
+const Mutation& mutationOf(MutationKind kind);
+inline Color contributionFor(MutationKind kind, const MeasureContext& c, const PathVertex* path, int n, float filmX,
+                             float filmY, FixedTail* tail = nullptr) {
+  return kind == MutationKind::None ? Color(0.0f) : mutationOf(kind).contribution(c, path, n, filmX, filmY, tail);
+}
+
+// Lens perturbation (src/mutations/lens.cpp): the fixed vertex its walk connects to (-1: the
+// walk reaches the light by tracing), and f in its measure.
+int lensConnectionTarget(const uint8_t* kinds, int n);
+Color lensContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY,
+                       FixedTail* tail = nullptr);
+// Caustic perturbation (src/mutations/caustic.cpp): the vertex s it starts from (the first
+// non-specular vertex after vertex 1), or -1 when it does not apply (vertex 1 specular, the
+// source the environment, the path too short); true for paths L...SDE; f in its measure.
+int causticSource(const uint8_t* kinds, int n);
+bool isCausticPath(const uint8_t* kinds, int n);
+Color causticContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY,
+                          FixedTail* tail = nullptr);
+// PMC-ER eq. 6 (after Veach): the caustic angle range that moves the image by about `pixels`
+// pixels: theta(d) |x0 - x1| / (sum of the segment lengths from the source to vertex 1),
+// theta(d) the angle of d pixels at the eye.
+float causticThetaMax(const MeasureContext& c, const CurrentPath& y, float pixels);
+
+// The family a strategy picks for a signature (Lens or Caustic, or None); the settings' lens
+// shape and caustic angle then pick the unit. It depends on the signature only, which
+// mutations preserve, so the selection probabilities are the same forwards and backwards and
+// cancel in the acceptance ratio. u picks when `Mixed` has two choices.
+MutationKind chooseMutation(MutationStrategy s, const uint8_t* kinds, int n, float u);
+
+}  // namespace erpt

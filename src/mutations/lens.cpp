@@ -1,0 +1,115 @@
+// The lens perturbation (ERPT paper section 4.3, after Veach and Guibas 1997): the film
+// position moves, uniformly in a square of half-side `size` pixels (ERPT) or in a disk of
+// radius `size` (PMC-ER); the eye ray through it follows the current path's specular lobes,
+// its direction is perturbed at non-specular vertices followed by specular ones, and the last
+// regenerated vertex connects to the next fixed vertex (or the walk reaches the light by
+// tracing). Both distributions are symmetric: T(z -> y) / T(y -> z) is 1 when y lies in z's
+// square (disk), which it does whenever z lies in y's, and 0 otherwise.
+#include <cmath>
+
+#include "erpt/camera.h"
+#include "erpt/mutation.h"
+#include "path_factors.h"
+
+namespace erpt {
+
+int lensConnectionTarget(const uint8_t* kinds, int n) {
+  for (int j = 1; j < n; ++j) {
+    if (kinds[j] == kLightVertex || kinds[j] == kEnvironmentVertex) return -1;  // reached by tracing
+    if (kinds[j] == kSpecularVertex || (j + 1 < n && kinds[j + 1] == kSpecularVertex)) continue;
+    return j + 1;
+  }
+  return -1;
+}
+
+Color lensContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY,
+                       FixedTail* tail) {
+  Color f(c.film.density(filmX, filmY));
+  if (isBlack(f)) return f;
+  for (int j = 1; j < n; ++j) {
+    const PathVertex& v = path[j];
+    const Vec3 toPrev = directionBetween(v, path[j - 1]);
+    // Reached by tracing: a light or the environment ends the walk (solid-angle measure).
+    if (v.kind == kLightVertex || v.kind == kEnvironmentVertex) return f * factors::emittedAlong(c, v, toPrev);
+    if (j + 1 >= n) return Color(0.0f);
+    const Vec3 toNext = directionBetween(v, path[j + 1]);
+    if (v.kind == kSpecularVertex) {
+      f *= factors::specularAt(c, v, toPrev, toNext, false);
+      continue;
+    }
+    f *= factors::evalAt(c, v, toPrev, toNext);
+    if (path[j + 1].kind == kSpecularVertex) continue;  // perturbed direction: solid angle
+    // Connection to the fixed vertex t = j + 1 (area measure), which keeps its outgoing
+    // direction but sees a new incoming one; then the rest of the path.
+    const PathVertex& t = path[j + 1];
+    f *= factors::areaFactor(c, v, t);
+    if (t.kind == kLightVertex || t.kind == kEnvironmentVertex) return f * factors::emittedAlong(c, t, -toNext);
+    if (j + 2 >= n) return Color(0.0f);
+    f *= factors::evalAt(c, t, -toNext, directionBetween(t, path[j + 2]));
+    return f * factors::tailFrom(c, path, n, j + 2, tail);
+  }
+  return Color(0.0f);
+}
+
+
+namespace {
+
+// Film positions a little outside the square or disk by rounding still count as inside.
+constexpr float kFilmSlack = 1e-3f;
+
+bool appliesToAnyChainPath(const uint8_t*, int n) { return n >= 2 && n <= kMaxChainVertices; }
+
+int lensTailStart(const uint8_t* kinds, int n) {
+  // The connection target's incoming direction changes; the vertices after it do not.
+  const int target = lensConnectionTarget(kinds, n);
+  return target < 0 ? n : std::min(n, target + 1);
+}
+
+// The part of a start that does not depend on the film position's distribution.
+void startAt(const MeasureContext& c, const CurrentPath& y, float fx, float fy, ProposalStart& out) {
+  out.filmX = fx;
+  out.filmY = fy;
+  if (!(c.film.density(fx, fy) > 0)) {
+    out.reject = kRejectOffFilm;
+    return;
+  }
+  const Camera::Ray r = c.camera.generateRay(fx, fy);
+  out.origin = r.origin;
+  out.direction = r.direction;
+  out.tnear = r.tnear;
+  out.tfar = r.tfar;
+  out.cursor = 1;
+  out.walk = +1;
+  out.regenFirst = 1;
+  out.connectTo = lensConnectionTarget(y.kinds, y.n);
+  out.regenLast = out.connectTo > 0 ? out.connectTo - 1 : y.n - 1;
+}
+
+void startSquare(const MeasureContext& c, const CurrentPath& y, float size, float u1, float u2, ProposalStart& out) {
+  startAt(c, y, y.filmX + (2 * u1 - 1) * size, y.filmY + (2 * u2 - 1) * size, out);
+}
+
+void startDisk(const MeasureContext& c, const CurrentPath& y, float size, float u1, float u2, ProposalStart& out) {
+  // Uniform in the disk: radius size * sqrt(u1), angle 2 pi u2.
+  const float r = size * std::sqrt(u1), phi = 2 * kPi * u2;
+  startAt(c, y, y.filmX + r * std::cos(phi), y.filmY + r * std::sin(phi), out);
+}
+
+float squareRatio(const MeasureContext&, const CurrentPath& y, const CurrentPath& z, float size) {
+  const bool inside = std::abs(y.filmX - z.filmX) <= size + kFilmSlack && std::abs(y.filmY - z.filmY) <= size + kFilmSlack;
+  return inside ? 1.0f : 0.0f;  // 1 / (2 size)^2 both ways
+}
+
+float diskRatio(const MeasureContext&, const CurrentPath& y, const CurrentPath& z, float size) {
+  const float dx = y.filmX - z.filmX, dy = y.filmY - z.filmY;
+  return std::sqrt(dx * dx + dy * dy) <= size + kFilmSlack ? 1.0f : 0.0f;  // 1 / (pi size^2) both ways
+}
+
+}  // namespace
+
+extern const Mutation kLensSquareMutation{MutationKind::Lens, MutationKind::Lens, appliesToAnyChainPath, startSquare,
+                                          lensTailStart, lensContribution, squareRatio};
+extern const Mutation kLensDiskMutation{MutationKind::LensDisk, MutationKind::Lens, appliesToAnyChainPath, startDisk,
+                                        lensTailStart, lensContribution, diskRatio};
+
+}  // namespace erpt

@@ -1,0 +1,31 @@
+// The one place the mutation units are looked up by kind, and the strategies' choice of a
+// mutation family for a path.
+#include <stdexcept>
+
+#include "erpt/mutation.h"
+
+namespace erpt {
+
+extern const Mutation kLensSquareMutation, kLensDiskMutation, kCausticMutation, kCausticVeachMutation;
+
+const Mutation& mutationOf(MutationKind kind) {
+  static const Mutation* const table[kMutationKindCount] = {nullptr, &kLensSquareMutation, &kLensDiskMutation,
+                                                            &kCausticMutation, &kCausticVeachMutation};
+  const Mutation* m = size_t(kind) < size_t(kMutationKindCount) ? table[size_t(kind)] : nullptr;
+  if (!m) throw std::logic_error("mutationOf: no mutation unit for this kind");
+  return *m;
+}
+
+MutationKind chooseMutation(MutationStrategy s, const uint8_t* kinds, int n, float u) {
+  if (n < 2 || n > kMaxChainVertices) return MutationKind::None;
+  const bool caustic = causticSource(kinds, n) > 0;
+  switch (s) {
+    case MutationStrategy::Paper: return isCausticPath(kinds, n) ? MutationKind::Caustic : MutationKind::Lens;
+    case MutationStrategy::Mixed: return caustic && u < 0.5f ? MutationKind::Caustic : MutationKind::Lens;
+    case MutationStrategy::LensOnly: return MutationKind::Lens;
+    case MutationStrategy::CausticOnly: return caustic ? MutationKind::Caustic : MutationKind::None;
+  }
+  return MutationKind::None;
+}
+
+}  // namespace erpt

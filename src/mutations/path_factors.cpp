@@ -1,0 +1,93 @@
+// Path contribution factors shared by the mutations' measures (path_factors.h).
+#include "path_factors.h"
+
+#include <cmath>
+
+#include "erpt/bsdf.h"
+
+namespace erpt::factors {
+
+namespace {
+
+struct LocalBsdf {
+  const Material& material;
+  SurfaceColors colors;
+  Frame frame;
+};
+
+LocalBsdf bsdfAt(const MeasureContext& c, const PathVertex& v) {
+  return {c.scene.materials[size_t(v.material)], c.scene.surfaceColors(v.material, v.u, v.v), Frame(v.ns)};
+}
+
+}  // namespace
+
+// f(wi, wo) |cos(wo)| of a non-specular vertex (wi towards the camera side, world space).
+Color evalAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo) {
+  if (v.material < 0) return Color(0.0f);
+  LocalBsdf b = bsdfAt(c, v);
+  return bsdfEval(b.material, b.colors, b.frame.toLocal(wi), b.frame.toLocal(wo));
+}
+
+// Value of the Dirac lobe taking wi to wo at a specular vertex (radiance transport); black if
+// the material has no such lobe. `adjoint`: the importance-transport value instead.
+Color specularAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo, bool adjoint) {
+  if (v.material < 0) return Color(0.0f);
+  LocalBsdf b = bsdfAt(c, v);
+  Vec3 li = b.frame.toLocal(wi), lo = b.frame.toLocal(wo);
+  Color value;
+  float probability;
+  if (!bsdfDeltaLobe(b.material, b.colors, li, lo, value, probability)) return Color(0.0f);
+  return adjoint ? value / deltaRadianceScale(b.material, li, lo) : value;
+}
+
+// Radiance (area light, environment) or intensity (point light) a light vertex sends along w.
+Color emittedAlong(const MeasureContext& c, const PathVertex& light, Vec3 w) {
+  if (light.emitter < 0) return Color(0.0f);
+  const Emitter& e = c.scene.emitters[size_t(light.emitter)];
+  if (e.kind == EmitterKind::Area && dot(light.ng, w) <= 0) return Color(0.0f);  // one-sided
+  return e.radiance;
+}
+
+bool isPointLight(const MeasureContext& c, const PathVertex& v) {
+  return v.kind == kLightVertex && v.emitter >= 0 && c.scene.emitters[size_t(v.emitter)].kind == EmitterKind::Point;
+}
+
+// Solid angle at `from` per unit area at `to` (rule 3's geometry term without the cosine at
+// `from`, which the BSDF factor carries): |cos_g(to)| / d^2; a point light has no area (1 /
+// d^2), the environment is a direction (1).
+float areaFactor(const MeasureContext& c, const PathVertex& from, const PathVertex& to) {
+  if (to.kind == kEnvironmentVertex) return 1.0f;
+  const Vec3 d = to.p - from.p;
+  const float dist2 = dot(d, d);
+  if (isPointLight(c, to)) return 1.0f / dist2;
+  return std::abs(dot(to.ng, d)) / (dist2 * std::sqrt(dist2));
+}
+
+// The vertices from `first` on, which a mutation leaves where they are (area measure, with
+// their incoming directions): a constant factor of f for the mutation, so it cancels in the
+// acceptance ratio. It is still multiplied in: its colour is part of the path's colour, which
+// deposits carry, and with it f is the whole density in the mutation's measure, so the f of
+// different mutations can be compared (tests/erpt/erpt_measure_test.cpp).
+static Color fixedTail(const MeasureContext& c, const PathVertex* path, int n, int first) {
+  Color f(1.0f);
+  for (int k = first; k < n; ++k) {
+    const PathVertex& v = path[k];
+    const Vec3 toPrev = directionBetween(v, path[k - 1]);
+    f *= areaFactor(c, path[k - 1], v);
+    if (v.kind == kLightVertex || v.kind == kEnvironmentVertex) return f * emittedAlong(c, v, toPrev);
+    if (k + 1 >= n) return Color(0.0f);
+    const Vec3 toNext = directionBetween(v, path[k + 1]);
+    f *= v.kind == kSpecularVertex ? specularAt(c, v, toPrev, toNext, false) : evalAt(c, v, toPrev, toNext);
+  }
+  return Color(0.0f);
+}
+
+// The tail from `first` on: from the cache when it holds it, else computed (and cached).
+Color tailFrom(const MeasureContext& c, const PathVertex* path, int n, int first, FixedTail* cache) {
+  if (cache && cache->known) return cache->value;
+  const Color t = fixedTail(c, path, n, first);
+  if (cache) *cache = FixedTail{t, true};
+  return t;
+}
+
+}  // namespace erpt::factors

@@ -1,0 +1,23 @@
+// ERPT connect stage: the connection rays of the proposals that reached their last
+// regenerated vertex go to Embree as one occlusion stream; blocked connections reject.
+#include "erpt/erpt_stages.h"
+
+namespace erpt {
+
+void stageErptConnect(const Tracer& tracer, RayQueue& shadowRays, ProposalQueue& proposals, IndexRange range) {
+  size_t traced = 0;
+  for (size_t i = range.begin; i < range.end; ++i) traced += shadowRays.tnear[i] <= shadowRays.tfar[i];
+  // Ranges without a connection are not handed to Embree.
+  if (traced > 0) tracer.occluded(shadowRays, range);
+  for (size_t i = range.begin; i < range.end; ++i) {
+    if (proposals.state[i] != kProposalConnecting) continue;
+    if (shadowRays.tfar[i] >= 0) {
+      proposals.state[i] = kProposalComplete;
+    } else {
+      proposals.state[i] = kProposalRejected;
+      proposals.reason[i] = kRejectOccluded;
+    }
+  }
+}
+
+}  // namespace erpt
