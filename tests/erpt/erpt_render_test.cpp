@@ -20,6 +20,8 @@ struct ErptRun {
   int spp = 16, mutations = 100, chainLength = 100, directSamples = -1, size = 0, threads = 0;
   uint64_t seed = 1;
   MutationStrategy strategy = MutationStrategy::Paper;
+  LensShape lensShape = LensShape::Square;
+  CausticAngle causticAngle = CausticAngle::Erpt;
   bool expected = false;
   FilterKind filter = FilterKind::Box;
 };
@@ -37,6 +39,8 @@ RgbImage renderErptImage(const Scene& scene, const ErptRun& r, RenderStats* stat
   s.erpt.chainLength = r.chainLength;
   s.erpt.directSamples = r.directSamples;
   s.erpt.strategy = r.strategy;
+  s.erpt.lensShape = r.lensShape;
+  s.erpt.causticAngle = r.causticAngle;
   s.erpt.expectedDeposit = r.expected;
   RenderStats stats;
   RgbImage img = render(scene, s, stats);
@@ -141,7 +145,8 @@ double blockError(const RgbImage& img, const RgbImage& ref) {
 // mutations grow 4x, with no floor. The scene (tests/data/caustic-scene.xml) is a glass sphere
 // over a diffuse floor under a small light; paths a kind cannot mutate keep their chains in
 // place.
-void expectStationary(MutationStrategy strategy, double bound) {
+void expectStationary(MutationStrategy strategy, double bound, LensShape shape = LensShape::Square,
+                      CausticAngle angle = CausticAngle::Erpt) {
   const Scene scene = loadScene(test::sourceDir() + "/tests/data/caustic-scene.xml");
   const RgbImage ref = readImage(test::sourceDir() + "/tests/data/caustic-scene-path-32.exr");
   double errors[2];
@@ -151,6 +156,8 @@ void expectStationary(MutationStrategy strategy, double bound) {
     r.mutations = 16 * r.spp;
     r.chainLength = 1000;
     r.strategy = strategy;
+    r.lensShape = shape;
+    r.causticAngle = angle;
     r.seed = 3 + level;
     RenderStats stats;
     const RgbImage img = renderErptImage(scene, r, &stats);
@@ -175,6 +182,15 @@ TEST(StatisticalErpt, LensOnlyChainsKeepThePathTracedDistribution) { expectStati
 // a broken rule 5: 0.087). ErptMeasure checks the caustic densities far more sharply.
 TEST(StatisticalErpt, CausticOnlyChainsKeepThePathTracedDistribution) {
   expectStationary(MutationStrategy::CausticOnly, 0.075);
+}
+
+// The PMC-ER perturbations (disk lens, Veach's caustic angle with its asymmetric T) keep the
+// distribution too, with the bounds of their ERPT counterparts.
+TEST(StatisticalErpt, LensDiskChainsKeepThePathTracedDistribution) {
+  expectStationary(MutationStrategy::LensOnly, 0.05, LensShape::Disk);
+}
+TEST(StatisticalErpt, CausticVeachChainsKeepThePathTracedDistribution) {
+  expectStationary(MutationStrategy::CausticOnly, 0.075, LensShape::Square, CausticAngle::Veach);
 }
 
 // The same scene, seed and options give the same image at 1 and 2 threads, bit for bit.
