@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_support.h"
+#include "erpt/chain_step.h"
 #include "erpt/erpt_chains.h"
 #include "erpt/render.h"
 #include "erpt/rng.h"
@@ -186,12 +187,16 @@ void BM_ErptDeposit(benchmark::State& state) {
   setRate(state, "deposits/s", kSlots);
 }
 
-// The whole chain loop (refill, mutate, intersect, walk, connect, accept, deposit) on the
-// fixture's seeds: 16 mutations per pixel in chains of 100 steps.
+// The whole chain loop (refill, mutate, intersect, trace, connect, accept, deposit) on the
+// fixture's seeds: 16 mutations per pixel in chains of 100 steps. Second argument: the chain
+// slots, 0 for what a render on that many threads uses (erptChainSlots), else that many (the
+// benchmark used to run 8192 slots at any thread count: a working set that leaves the cache).
 void BM_ErptChainLoop(benchmark::State& state) {
   ErptFixture& f = fixture();
-  ThreadPool pool(int(state.range(0)));
-  ErptChains::Config config{f.ctx, 100, 7, false, kSlots};
+  const int threads = int(state.range(0));
+  ThreadPool pool(threads);
+  const size_t slots = state.range(1) > 0 ? size_t(state.range(1)) : erptChainSlots(threads);
+  ErptChains::Config config{f.ctx, 100, 7, false, slots};
   config.depositEnergy = f.energy / (kSize * kSize * 16.0);
   uint64_t mutations = 0, rays = 0;
   double embree = 0, total = 0;
@@ -214,6 +219,28 @@ void BM_ErptChainLoop(benchmark::State& state) {
   state.counters["embree_share"] = total > 0 ? embree / total : 0;
 }
 
+// One whole chain step (ChainStep::run: mutate, intersect, trace, connect, accept) on the
+// fixture's chains with one mutation kind only (argument: MutationKind; chains the kind cannot
+// mutate make no proposal), at 1 and 2 threads.
+void BM_ErptChainStep(benchmark::State& state) {
+  ErptFixture& f = fixture();
+  const MutationKind kind = MutationKind(state.range(0));
+  ThreadPool pool(int(state.range(1)));
+  ErptStepContext ctx = f.ctx;
+  const bool lens = kind == MutationKind::Lens || kind == MutationKind::LensDisk;
+  ctx.settings.strategy = lens ? MutationStrategy::LensOnly : MutationStrategy::CausticOnly;
+  ctx.settings.lensShape = kind == MutationKind::LensDisk ? LensShape::Disk : LensShape::Square;
+  ctx.settings.causticAngle = kind == MutationKind::CausticVeach ? CausticAngle::Veach : CausticAngle::Erpt;
+  ErptQueues q = f;
+  ErptCounters counters;
+  const ChainStep step{f.tracer, ctx, nullptr, kGrain};
+  uint64_t rays = 0;
+  for (auto _ : state) rays += step.run(q, counters);
+  state.SetLabel(mutationName(kind));
+  setRate(state, "mutations/s", double(counters.proposed[size_t(kind)]) / double(state.iterations()));
+  state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
+}
+
 #define THREADS ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()
 BENCHMARK(BM_ErptMutate)->THREADS;
 BENCHMARK(BM_ErptIntersect)->THREADS;
@@ -221,7 +248,20 @@ BENCHMARK(BM_ErptTrace)->THREADS;
 BENCHMARK(BM_ErptConnect)->THREADS;
 BENCHMARK(BM_ErptAccept)->THREADS;
 BENCHMARK(BM_ErptDeposit)->Arg(0)->Arg(1)->UseRealTime();
-BENCHMARK(BM_ErptChainLoop)->THREADS->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ErptChainStep)
+    ->ArgNames({"kind", "threads"})
+    ->ArgsProduct({{int(MutationKind::Lens), int(MutationKind::LensDisk), int(MutationKind::Caustic),
+                    int(MutationKind::CausticVeach)},
+                   {1, 2}})
+    ->UseRealTime();
+BENCHMARK(BM_ErptChainLoop)
+    ->ArgNames({"threads", "slots"})
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({1, 8192})
+    ->Args({2, 8192})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace erpt::bench

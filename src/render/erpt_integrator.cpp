@@ -78,9 +78,7 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
   ErptChains::Config config{
       ErptStepContext{MeasureContext{scene, setup.lights, setup.camera, density}, o},
       uint32_t(o.chainLength), s.seed, o.directSamples > 0,
-      // Chain slots: 1024 per thread keeps a step's working set (chain and proposal vertices,
-      // ~1.4 MB) in cache; larger queues measured up to 2x slower on this machine.
-      size_t(1024) * size_t(std::max(1, setup.pool.threads())), es.depositEnergy, uint32_t(o.maxConsecutive),
+erptChainSlots(setup.pool.threads()), es.depositEnergy, uint32_t(o.maxConsecutive),
       o.pmFilterRadius >= 0, uint32_t(o.maxChainsPerSeed)};
   ErptChains chains(setup.tracer, config, setup.film, es, stats.stages);
 
