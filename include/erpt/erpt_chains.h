@@ -52,8 +52,12 @@ class ErptChains {
  private:
   bool refill();  // true when every slot is busy afterwards
   void step();
-  void depositInPlace(const SeedStore& store, size_t seed, InPlaceReason why);
-  // Why seed `i` of `store` cannot start moving chains (kInPlaceReasonCount: it can).
+  // Deposits `energy` (luminance) in the seed's colour at its film position, counted by `why`.
+  void depositInPlace(const SeedStore& store, size_t seed, double energy, InPlaceReason why);
+  // Why seed `i` of `store` cannot start moving chains (kInPlaceReasonCount: it can): from
+  // its signature alone (too long, no mutation applies), and also from f in each mutation's
+  // measure.
+  InPlaceReason signatureReason(const SeedStore& store, size_t i) const;
   InPlaceReason inPlaceReason(const SeedStore& store, size_t i) const;
   bool anyActive() const;
 
@@ -71,7 +75,7 @@ class ErptChains {
   };
   const SeedStore* batch_ = nullptr;
   std::vector<PendingSeed> pending_;
-  std::vector<uint8_t> inPlace_;  // per seed of the batch: InPlaceReason, or kInPlaceReasonCount
+  std::vector<uint8_t> inPlace_;  // per seed starting chains: InPlaceReason, or kInPlaceReasonCount
   size_t pendingNext_ = 0;
   uint64_t seedCounter_ = 0, chainCounter_ = 0;
   double deposited_ = 0, inPlaceDeposited_ = 0;

@@ -31,6 +31,16 @@ bool ErptChains::takesSeed(const SeedStore& store, size_t i, bool excludeDirect)
   return !excludeDirect || store.seeds.vertexCount[i] > 3;
 }
 
+InPlaceReason ErptChains::signatureReason(const SeedStore& store, size_t i) const {
+  const uint32_t n = store.seeds.vertexCount[i];
+  if (n > uint32_t(kMaxChainVertices)) return kInPlaceTooLong;
+  uint8_t kinds[kMaxChainVertices];
+  for (uint32_t j = 0; j < n; ++j) kinds[j] = store.vertices.kind[store.seeds.vertexBegin[i] + j];
+  const bool none = chooseMutation(config_.step.settings.strategy, kinds, int(n), 0.0f) == MutationKind::None &&
+                    chooseMutation(config_.step.settings.strategy, kinds, int(n), 0.999f) == MutationKind::None;
+  return none ? kInPlaceNoMutation : kInPlaceReasonCount;
+}
+
 InPlaceReason ErptChains::inPlaceReason(const SeedStore& store, size_t i) const {
   const uint32_t n = store.seeds.vertexCount[i];
   if (n > uint32_t(kMaxChainVertices)) return kInPlaceTooLong;
@@ -63,26 +73,26 @@ void ErptChains::consume(const SeedStore& batch) {
   const double ed = config_.depositEnergy;
   const double m = config_.chainLength;
   const bool detailedBalance = config_.step.settings.flow == FlowRule::DetailedBalance;
-  // Which seeds can start moving chains: f in each mutation's measure, in parallel.
-  inPlace_.assign(batch.size(), uint8_t(kInPlaceReasonCount));
-  forEachRange("erpt seed check", batch.size(), kGrain, [&](IndexRange r) {
-    for (size_t i = r.begin; i < r.end; ++i)
-      if (takesSeed(batch, i, config_.excludeDirect)) inPlace_[i] = uint8_t(inPlaceReason(batch, i));
-  }, &times_);
+  // First the chain counts (most seeds start none: e / (m e_d) is small), then, for the seeds
+  // that start chains only, whether their chains could move (f in each mutation's measure,
+  // computed in parallel), so the check costs per chain, not per seed.
+  struct Started {
+    uint32_t seed, copies;
+    float energy;
+  };
+  std::vector<Started> started;
   for (size_t i = 0; i < batch.size(); ++i) {
     if (!takesSeed(batch, i, config_.excludeDirect)) continue;
     const float e = luminance(batch.contribution(i));
     if (!(e > 0) || !std::isfinite(e)) continue;
     ++stats_.seeds;
-    // The seed's random number is drawn for every seed, so chain numbering does not depend on
-    // which seeds stay in place.
+    // Drawn for every seed, so the chain numbering does not depend on which stay in place.
     const float u = uniformFloat(streamKey(config_.seed, kSeedStream, seedCounter_++), 0);
-    if (inPlace_[i] != kInPlaceReasonCount) {
-      depositInPlace(batch, i, InPlaceReason(inPlace_[i]));
-      continue;
-    }
-    if (!detailedBalance && !(ed > 0)) {
-      depositInPlace(batch, i, kInPlaceNoDepositEnergy);
+    // The signature alone says whether a chain can hold and move the seed (cheap, every seed):
+    // if not, or with no deposition energy, the seed's own X_f goes where it is.
+    const InPlaceReason bySignature = signatureReason(batch, i);
+    if (bySignature != kInPlaceReasonCount || (!detailedBalance && !(ed > 0))) {
+      depositInPlace(batch, i, e, bySignature != kInPlaceReasonCount ? bySignature : kInPlaceNoDepositEnergy);
       continue;
     }
     uint32_t copies = detailedBalance ? 1 : chainsForSeed(e, m, ed, u);
@@ -93,9 +103,21 @@ void ErptChains::consume(const SeedStore& batch) {
       energy = float(double(e) / (m * copies));
       ++stats_.cappedSeeds;
     }
-    if (copies == 0) continue;
-    stats_.chains += copies;
-    pending_.push_back(PendingSeed{uint32_t(i), copies, energy});
+    if (copies > 0) started.push_back(Started{uint32_t(i), copies, energy});
+  }
+  inPlace_.assign(started.size(), uint8_t(kInPlaceReasonCount));
+  forEachRange("erpt seed check", started.size(), 64, [&](IndexRange r) {
+    for (size_t k = r.begin; k < r.end; ++k) inPlace_[k] = uint8_t(inPlaceReason(batch, started[k].seed));
+  }, &times_);
+  for (size_t k = 0; k < started.size(); ++k) {
+    const Started& st = started[k];
+    if (inPlace_[k] != kInPlaceReasonCount) {
+      // What its chains would have deposited, at the seed's own film position.
+      depositInPlace(batch, st.seed, double(st.energy) * m * st.copies, InPlaceReason(inPlace_[k]));
+      continue;
+    }
+    stats_.chains += st.copies;
+    pending_.push_back(PendingSeed{st.seed, st.copies, st.energy});
   }
   refill();
   while (pendingNext_ < pending_.size()) {
@@ -133,14 +155,15 @@ bool ErptChains::refill() {
   return full;
 }
 
-void ErptChains::depositInPlace(const SeedStore& store, size_t seed, InPlaceReason why) {
-  // The seed's own estimate X_f, which is what its chains deposit in expectation.
-  const Color energy = store.contribution(seed);
+void ErptChains::depositInPlace(const SeedStore& store, size_t seed, double energy, InPlaceReason why) {
+  // `energy` (luminance) in the seed's colour rgb(X_f) / lum(X_f).
+  const Color c = store.contribution(seed);
+  const Color deposit = c * float(energy / double(luminance(c)));
   ++stats_.inPlace[why];
-  deposited_ += luminance(energy);
-  inPlaceDeposited_ += luminance(energy);
+  deposited_ += luminance(deposit);
+  inPlaceDeposited_ += luminance(deposit);
   config_.step.measure.film.splat(store.seeds.filmX[seed], store.seeds.filmY[seed],
-                                  [&](uint32_t pixel, float w) { film_.add(pixel, energy * w); });
+                                  [&](uint32_t pixel, float w) { film_.add(pixel, deposit * w); });
 }
 
 void ErptChains::step() {
