@@ -48,8 +48,8 @@ struct PathFixture {
       paths.pixel[i] = uint32_t(i);
       paths.sample[i] = 0;
       paths.depth[i] = 1;
-      paths.throughputR[i] = paths.throughputG[i] = paths.throughputB[i] = 1;
-      paths.radianceR[i] = paths.radianceG[i] = paths.radianceB[i] = 0;
+      paths.throughputSet(i, Color(1.0f));
+      paths.radianceSet(i, Color(0.0f));
       paths.prevPdf[i] = 0;
       paths.pLength[i] = 1;
       slots.path[i] = uint32_t(i);

@@ -19,16 +19,6 @@ constexpr int kMaxChainVertices = 12;
 
 
 
-struct PathVertex {
-  Vec3 p, ns, ng;
-  int32_t material = -1;
-  float u = 0, v = 0;
-  uint8_t kind = kEyeVertex;
-  int32_t emitter = -1;
-};
-PathVertex loadVertex(const VertexQueue& q, size_t row);
-void storeVertex(VertexQueue& q, size_t row, const PathVertex& v);
-
 // Unit direction from vertex a towards vertex b (an environment vertex b: its direction).
 Vec3 directionBetween(const PathVertex& a, const PathVertex& b);
 // True when the path reflects at vertex j (its neighbours lie on the same side of it).

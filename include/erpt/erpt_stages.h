@@ -88,6 +88,10 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
                      ProposalQueue& proposals, const VertexQueue& proposalVertices, DepositQueue& deposits,
                      ErptCounters& counters, IndexRange range);
 
+// Deposit records per chain slot: slot i owns rows [i * kDepositsPerStep, + kDepositsPerStep)
+// of the deposit queue (the paper's rule fills one, expected values two).
+constexpr size_t kDepositsPerStep = 2;
+
 // A path's film position and colour rgb(f) / lum(f), as a deposit sees it.
 struct StepDeposit {
   float filmX, filmY;
@@ -100,6 +104,7 @@ struct StepDeposit {
 // (1 - q) e at the path before and q e at the proposal.
 void writeStepDeposits(const ErptSettings& s, const StepDeposit& before, const StepDeposit& proposal, float q,
                        bool moved, float energy, DepositQueue& deposits, size_t i);
+// Empties slot i's deposit records.
 void clearStepDeposits(DepositQueue& deposits, size_t i);
 
 // The deposit stage's noise filters (paper section 4.4; both biased, both off by default).

@@ -50,8 +50,11 @@ struct Mutation {
   // in their perturbation's distribution): f and the fixed tail are cached per measure.
   MutationKind measure;
   bool (*applies)(const uint8_t* kinds, int n);
-  // Samples a proposal from y with perturbation size `size` (pixels) and uniforms u1, u2.
-  void (*start)(const MeasureContext& c, const CurrentPath& y, float size, float u1, float u2, ProposalStart& out);
+  // Samples a proposal from y with perturbation size `size` (pixels) and uniforms u1, u2. The
+  // start reads y's vertices, kinds and n; its film position comes in registers (filmX,
+  // filmY: reading it back from a struct just written cost the mutate stage 2x in stalls).
+  void (*start)(const MeasureContext& c, const CurrentPath& y, float filmX, float filmY, float size, float u1, float u2,
+                ProposalStart& out);
   // First vertex of the fixed tail (erpt_path.h): f reads vertices up to it (inclusive) when
   // the tail is cached; n: no tail.
   int (*tailStart)(const uint8_t* kinds, int n);

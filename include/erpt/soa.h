@@ -9,6 +9,8 @@
 #include <new>
 #include <vector>
 
+#include "erpt/math.h"
+
 namespace erpt {
 
 // 64-byte aligned allocator so every column starts on a cache line (and SIMD loads align).
@@ -41,18 +43,85 @@ struct IndexRange {
 
 }  // namespace erpt
 
-#define ERPT_SOA_COLUMN(type, name, doc) ::erpt::Column<type> name;
-#define ERPT_SOA_RESIZE(type, name, doc) name.resize(n);
-#define ERPT_SOA_COPY_ROW(type, name, doc) name[to] = from.name[at];
-#define ERPT_SOA_STRUCT(Name, FIELDS)             \
-  struct Name {                                   \
-    FIELDS(ERPT_SOA_COLUMN)                       \
-    size_t count = 0;                             \
-    void resize(size_t n) {                       \
-      FIELDS(ERPT_SOA_RESIZE)                     \
-      count = n;                                  \
-    }                                             \
-    size_t size() const { return count; }         \
-    /* row `to` of this = row `at` of `from` */   \
-    void copyRow(size_t to, const Name& from, size_t at) { FIELDS(ERPT_SOA_COPY_ROW) } \
+// Columns: one per scalar field, three per vector (X, Y, Z) and colour (R, G, B) field.
+#define ERPT_SOA_COLUMN(type, name, init, doc) ::erpt::Column<type> name;
+#define ERPT_SOA_VEC_COLUMNS(name, doc) ::erpt::Column<float> name##X, name##Y, name##Z;
+#define ERPT_SOA_COLOR_COLUMNS(name, doc) ::erpt::Column<float> name##R, name##G, name##B;
+#define ERPT_SOA_RESIZE(type, name, init, doc) name.resize(n);
+#define ERPT_SOA_VEC_RESIZE(name, doc) name##X.resize(n), name##Y.resize(n), name##Z.resize(n);
+#define ERPT_SOA_COLOR_RESIZE(name, doc) name##R.resize(n), name##G.resize(n), name##B.resize(n);
+#define ERPT_SOA_COPY_ROW(type, name, init, doc) name[to] = from.name[at];
+#define ERPT_SOA_VEC_COPY_ROW(name, doc) \
+  name##X[to] = from.name##X[at], name##Y[to] = from.name##Y[at], name##Z[to] = from.name##Z[at];
+#define ERPT_SOA_COLOR_COPY_ROW(name, doc) \
+  name##R[to] = from.name##R[at], name##G[to] = from.name##G[at], name##B[to] = from.name##B[at];
+// The Row type: one member per field, with the field's default.
+#define ERPT_SOA_ROW_MEMBER(type, name, init, doc) type name = init;
+#define ERPT_SOA_VEC_ROW_MEMBER(name, doc) ::erpt::Vec3 name;
+#define ERPT_SOA_COLOR_ROW_MEMBER(name, doc) ::erpt::Color name;
+#define ERPT_SOA_LOAD(type, name, init, doc) r.name = name[i];
+#define ERPT_SOA_VEC_LOAD(name, doc) r.name = ::erpt::Vec3(name##X[i], name##Y[i], name##Z[i]);
+#define ERPT_SOA_COLOR_LOAD(name, doc) r.name = ::erpt::Color(name##R[i], name##G[i], name##B[i]);
+#define ERPT_SOA_STORE(type, name, init, doc) name[i] = r.name;
+#define ERPT_SOA_VEC_STORE(name, doc) name##X[i] = r.name.x, name##Y[i] = r.name.y, name##Z[i] = r.name.z;
+#define ERPT_SOA_COLOR_STORE(name, doc) name##R[i] = r.name.x, name##G[i] = r.name.y, name##B[i] = r.name.z;
+// nameAt(i) / nameSet(i, value) for vector and colour fields; nothing for scalars.
+#define ERPT_SOA_NO_ACCESSOR(type, name, init, doc)
+#define ERPT_SOA_VEC_ACCESSORS(name, doc)                                                           \
+  ::erpt::Vec3 name##At(size_t i) const { return ::erpt::Vec3(name##X[i], name##Y[i], name##Z[i]); } \
+  void name##Set(size_t i, ::erpt::Vec3 v) { name##X[i] = v.x, name##Y[i] = v.y, name##Z[i] = v.z; }
+#define ERPT_SOA_COLOR_ACCESSORS(name, doc)                                                            \
+  ::erpt::Color name##At(size_t i) const { return ::erpt::Color(name##R[i], name##G[i], name##B[i]); } \
+  void name##Set(size_t i, ::erpt::Color c) { name##R[i] = c.x, name##G[i] = c.y, name##B[i] = c.z; }
+
+#define ERPT_SOA_STRUCT(Name, FIELDS)                                                          \
+  struct Name {                                                                                \
+    FIELDS(ERPT_SOA_COLUMN, ERPT_SOA_VEC_COLUMNS, ERPT_SOA_COLOR_COLUMNS)                      \
+    size_t count = 0;                                                                          \
+    struct Row {                                                                               \
+      FIELDS(ERPT_SOA_ROW_MEMBER, ERPT_SOA_VEC_ROW_MEMBER, ERPT_SOA_COLOR_ROW_MEMBER)          \
+    };                                                                                         \
+    void resize(size_t n) {                                                                    \
+      FIELDS(ERPT_SOA_RESIZE, ERPT_SOA_VEC_RESIZE, ERPT_SOA_COLOR_RESIZE)                      \
+      count = n;                                                                               \
+    }                                                                                          \
+    size_t size() const { return count; }                                                      \
+    /* row `to` of this = row `at` of `from` */                                                \
+    void copyRow(size_t to, const Name& from, size_t at) {                                     \
+      FIELDS(ERPT_SOA_COPY_ROW, ERPT_SOA_VEC_COPY_ROW, ERPT_SOA_COLOR_COPY_ROW)                \
+    }                                                                                          \
+    Row row(size_t i) const {                                                                  \
+      Row r;                                                                                   \
+      FIELDS(ERPT_SOA_LOAD, ERPT_SOA_VEC_LOAD, ERPT_SOA_COLOR_LOAD)                            \
+      return r;                                                                                \
+    }                                                                                          \
+    void setRow(size_t i, const Row& r) { FIELDS(ERPT_SOA_STORE, ERPT_SOA_VEC_STORE, ERPT_SOA_COLOR_STORE) } \
+    FIELDS(ERPT_SOA_NO_ACCESSOR, ERPT_SOA_VEC_ACCESSORS, ERPT_SOA_COLOR_ACCESSORS)             \
   };
+
+// A view: a value type over some of a queue's fields (a sub-list of its X-macro), with
+// loadView(queue, i) and storeView(queue, i, value) that touch only those columns.
+#define ERPT_SOA_Q_LOAD(type, name, init, doc) r.name = q.name[i];
+#define ERPT_SOA_Q_VEC_LOAD(name, doc) r.name = ::erpt::Vec3(q.name##X[i], q.name##Y[i], q.name##Z[i]);
+#define ERPT_SOA_Q_COLOR_LOAD(name, doc) r.name = ::erpt::Color(q.name##R[i], q.name##G[i], q.name##B[i]);
+#define ERPT_SOA_Q_STORE(type, name, init, doc) q.name[i] = r.name;
+#define ERPT_SOA_Q_VEC_STORE(name, doc) q.name##X[i] = r.name.x, q.name##Y[i] = r.name.y, q.name##Z[i] = r.name.z;
+#define ERPT_SOA_Q_COLOR_STORE(name, doc) q.name##R[i] = r.name.x, q.name##G[i] = r.name.y, q.name##B[i] = r.name.z;
+#define ERPT_SOA_VIEW(View, Queue, FIELDS)                                                 \
+  struct View {                                                                            \
+    FIELDS(ERPT_SOA_ROW_MEMBER, ERPT_SOA_VEC_ROW_MEMBER, ERPT_SOA_COLOR_ROW_MEMBER)        \
+  };                                                                                       \
+  /* into `r` in place: hot loops filling arrays of views avoid a temporary whose fields */ \
+  /* were just stored one by one and are then copied with wide loads (a store-forwarding */ \
+  /* stall that cost the accept stage ~20%) */                                             \
+  inline void load##View(const Queue& q, size_t i, View& r) {                              \
+    FIELDS(ERPT_SOA_Q_LOAD, ERPT_SOA_Q_VEC_LOAD, ERPT_SOA_Q_COLOR_LOAD)                    \
+  }                                                                                        \
+  inline View load##View(const Queue& q, size_t i) {                                       \
+    View r;                                                                                \
+    load##View(q, i, r);                                                                   \
+    return r;                                                                              \
+  }                                                                                        \
+  inline void store##View(Queue& q, size_t i, const View& r) {                             \
+    FIELDS(ERPT_SOA_Q_STORE, ERPT_SOA_Q_VEC_STORE, ERPT_SOA_Q_COLOR_STORE)                 \
+  }

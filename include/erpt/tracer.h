@@ -52,28 +52,12 @@ inline void prepareRays(RayQueue& q, size_t n) {
   }
 }
 
-// Sets ray i of a queue made by prepareRays.
+// Aims ray i of a queue made by prepareRays (its mask, id and flags stay as prepared).
 inline void setRay(RayQueue& q, size_t i, Vec3 org, Vec3 dir, float tnear, float tfar) {
-  q.orgX[i] = org.x;
-  q.orgY[i] = org.y;
-  q.orgZ[i] = org.z;
-  q.dirX[i] = dir.x;
-  q.dirY[i] = dir.y;
-  q.dirZ[i] = dir.z;
+  q.orgSet(i, org);
+  q.dirSet(i, dir);
   q.tnear[i] = tnear;
   q.tfar[i] = tfar;
-}
-
-// Ray `to` of `q` = ray `from` of `src` (origin, direction, interval).
-inline void copyRayGeometry(RayQueue& q, size_t to, const RayQueue& src, size_t from) {
-  q.orgX[to] = src.orgX[from];
-  q.orgY[to] = src.orgY[from];
-  q.orgZ[to] = src.orgZ[from];
-  q.dirX[to] = src.dirX[from];
-  q.dirY[to] = src.dirY[from];
-  q.dirZ[to] = src.dirZ[from];
-  q.tnear[to] = src.tnear[from];
-  q.tfar[to] = src.tfar[from];
 }
 
 // Marks ray i as inactive: Embree skips rays whose interval is empty.

@@ -46,38 +46,6 @@ const char* inPlaceReasonName(InPlaceReason r) {
   }
 }
 
-PathVertex loadVertex(const VertexQueue& q, size_t i) {
-  PathVertex v;
-  v.p = {q.px[i], q.py[i], q.pz[i]};
-  v.ns = {q.nsX[i], q.nsY[i], q.nsZ[i]};
-  v.ng = {q.ngX[i], q.ngY[i], q.ngZ[i]};
-  v.material = q.material[i];
-  v.u = q.u[i];
-  v.v = q.v[i];
-  v.kind = q.kind[i];
-  v.emitter = q.emitter[i];
-  return v;
-}
-
-void storeVertex(VertexQueue& q, size_t i, const PathVertex& v) {
-  q.px[i] = v.p.x;
-  q.py[i] = v.p.y;
-  q.pz[i] = v.p.z;
-  q.nsX[i] = v.ns.x;
-  q.nsY[i] = v.ns.y;
-  q.nsZ[i] = v.ns.z;
-  q.ngX[i] = v.ng.x;
-  q.ngY[i] = v.ng.y;
-  q.ngZ[i] = v.ng.z;
-  q.material[i] = v.material;
-  q.u[i] = v.u;
-  q.v[i] = v.v;
-  q.kind[i] = v.kind;
-  q.emitter[i] = v.emitter;
-  q.pdfForward[i] = 0;
-  q.parent[i] = -1;
-}
-
 Vec3 directionBetween(const PathVertex& a, const PathVertex& b) {
   // An environment vertex stores the direction it is seen in as -normal.
   if (b.kind == kEnvironmentVertex) return -b.ns;

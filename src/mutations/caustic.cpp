@@ -101,12 +101,13 @@ void startAlong(const MeasureContext& c, const CurrentPath& y, int s, Vec3 d, Pr
   out.connectTo = 0;
 }
 
-void startErpt(const MeasureContext& c, const CurrentPath& y, float, float u1, float u2, ProposalStart& out) {
+void startErpt(const MeasureContext& c, const CurrentPath& y, float, float, float, float u1, float u2, ProposalStart& out) {
   const int s = causticSource(y.kinds, y.n);
   startAlong(c, y, s, perturbDirection(sourceDirection(y, s), u1, u2), out);
 }
 
-void startVeach(const MeasureContext& c, const CurrentPath& y, float size, float u1, float u2, ProposalStart& out) {
+void startVeach(const MeasureContext& c, const CurrentPath& y, float, float, float size, float u1, float u2,
+                ProposalStart& out) {
   const int s = causticSource(y.kinds, y.n);
   const float thetaMax = causticThetaMax(c, y, size);
   if (!(thetaMax > 0)) {

@@ -85,14 +85,16 @@ void startAt(const MeasureContext& c, const CurrentPath& y, float fx, float fy, 
   out.regenLast = out.connectTo > 0 ? out.connectTo - 1 : y.n - 1;
 }
 
-void startSquare(const MeasureContext& c, const CurrentPath& y, float size, float u1, float u2, ProposalStart& out) {
-  startAt(c, y, y.filmX + (2 * u1 - 1) * size, y.filmY + (2 * u2 - 1) * size, out);
+void startSquare(const MeasureContext& c, const CurrentPath& y, float filmX, float filmY, float size, float u1, float u2,
+                 ProposalStart& out) {
+  startAt(c, y, filmX + (2 * u1 - 1) * size, filmY + (2 * u2 - 1) * size, out);
 }
 
-void startDisk(const MeasureContext& c, const CurrentPath& y, float size, float u1, float u2, ProposalStart& out) {
+void startDisk(const MeasureContext& c, const CurrentPath& y, float filmX, float filmY, float size, float u1, float u2,
+               ProposalStart& out) {
   // Uniform in the disk: radius size * sqrt(u1), angle 2 pi u2.
   const float r = size * std::sqrt(u1), phi = 2 * kPi * u2;
-  startAt(c, y, y.filmX + r * std::cos(phi), y.filmY + r * std::sin(phi), out);
+  startAt(c, y, filmX + r * std::cos(phi), filmY + r * std::sin(phi), out);
 }
 
 float squareRatio(const MeasureContext&, const CurrentPath& y, const CurrentPath& z, float size) {

@@ -65,7 +65,7 @@ RgbImage renderDirect(const Scene& scene, const RenderSettings& settings, Render
                  &stats.stages);
     // Accumulate in slot order on one thread: film sums are then independent of threading.
     for (size_t j = 0; j < n; ++j) {
-      invalid += !film.addIfFinite(samples.pixel[j], Color(samples.radianceR[j], samples.radianceG[j], samples.radianceB[j]));
+      invalid += !film.addIfFinite(samples.pixel[j], samples.radianceAt(j));
     }
     if (settings.progress) settings.progress(double(batchStart + n) / double(total));
   }

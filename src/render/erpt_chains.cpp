@@ -47,7 +47,7 @@ InPlaceReason ErptChains::inPlaceReason(const SeedStore& store, size_t i) const 
   PathVertex path[kMaxChainVertices];
   uint8_t kinds[kMaxChainVertices];
   for (uint32_t j = 0; j < n; ++j) {
-    path[j] = loadVertex(store.vertices, store.seeds.vertexBegin[i] + j);
+    path[j] = loadPathVertex(store.vertices, store.seeds.vertexBegin[i] + j);
     kinds[j] = path[j].kind;
   }
   // Every mutation the strategy may pick for this signature (the choice depends on the

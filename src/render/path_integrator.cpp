@@ -26,8 +26,8 @@ void initPaths(PathQueue& paths, PathSlotQueue& slots, const std::vector<uint32_
     paths.pixel[i] = order[(first + i) / spp];
     paths.sample[i] = uint32_t((first + i) % spp);
     paths.depth[i] = 1;
-    paths.throughputR[i] = paths.throughputG[i] = paths.throughputB[i] = 1;
-    paths.radianceR[i] = paths.radianceG[i] = paths.radianceB[i] = 0;
+    paths.throughputSet(i, Color(1.0f));
+    paths.radianceSet(i, Color(0.0f));
     paths.prevPdf[i] = 0;
     paths.pLength[i] = 1;
     paths.lastVertex[i] = -1;
@@ -37,18 +37,11 @@ void initPaths(PathQueue& paths, PathSlotQueue& slots, const std::vector<uint32_
 
 // Seed recording: vertex i of the history is the eye of path i.
 void writeEyeVertices(VertexQueue& history, PathQueue& paths, Vec3 eye, IndexRange r) {
+  VertexQueue::Row v;  // kind kEyeVertex, no material, no emitter, no parent
+  v.p = eye;
+  v.pdfForward = 1;  // the camera ray: density of the film position (filter-sampled)
   for (size_t i = r.begin; i < r.end; ++i) {
-    history.px[i] = eye.x;
-    history.py[i] = eye.y;
-    history.pz[i] = eye.z;
-    history.nsX[i] = history.nsY[i] = history.nsZ[i] = 0;
-    history.ngX[i] = history.ngY[i] = history.ngZ[i] = 0;
-    history.material[i] = -1;
-    history.u[i] = history.v[i] = 0;
-    history.kind[i] = kEyeVertex;
-    history.emitter[i] = -1;
-    history.pdfForward[i] = 1;  // the camera ray: density of the film position (filter-sampled)
-    history.parent[i] = -1;
+    history.setRow(i, v);
     paths.lastVertex[i] = int32_t(i);
   }
 }
@@ -120,7 +113,7 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
     }
 
     for (size_t i = 0; i < n; ++i) {
-      invalid += !film.addIfFinite(paths.pixel[i], Color(paths.radianceR[i], paths.radianceG[i], paths.radianceB[i]));
+      invalid += !film.addIfFinite(paths.pixel[i], paths.radianceAt(i));
     }
     if (recording && settings.seedSink) {
       settings.seedSink(*settings.seeds);

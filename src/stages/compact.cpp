@@ -22,10 +22,10 @@ size_t stageCompact(const PathSlotQueue& slots, const RayQueue& rays, PathSlotQu
     for (size_t k = b * grain; k < std::min(count, (b + 1) * grain); ++k) {
       if (!slots.alive[k]) continue;
       // Only the path id and the ray move: the other slot columns are per-bounce scratch
-      // that the next shade pass rewrites, and the ray's Embree flags never change.
+      // that the next shade pass rewrites.
       outSlots.path[out] = slots.path[k];
       outSlots.alive[out] = 1;
-      copyRayGeometry(outRays, out, rays, k);
+      outRays.copyRow(out, rays, k);
       ++out;
     }
   });

@@ -32,16 +32,18 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
       const uint8_t measure = uint8_t(unit.measure);
       // With the fixed tail cached, f only reads the vertices up to where the tail starts.
       FixedTail tail;
-      if (chains.tailKind[i] == measure) tail = FixedTail{Color(chains.tailR[i], chains.tailG[i], chains.tailB[i]), true};
+      if (chains.tailKind[i] == measure) tail = FixedTail{chains.tailAt(i), true};
       const int needed = tail.known ? std::min(n, unit.tailStart(kinds, n) + 1) : n;
-      for (int j = 0; j < needed; ++j) y[j] = loadVertex(chainVertices, base + size_t(j));
+      for (int j = 0; j < needed; ++j) loadPathVertex(chainVertices, base + size_t(j), y[j]);
       for (int j = needed; j < n; ++j) y[j].kind = kinds[j];
-      for (int j = 0; j < n; ++j) z[j] = j >= first && j <= last ? loadVertex(proposalVertices, base + size_t(j)) : y[j];
+      // z: the regenerated vertices from the proposal, the rest from the chain (read from the
+      // queue again rather than copied from y, which was just written field by field).
+      for (int j = 0; j < needed; ++j)
+        loadPathVertex(j >= first && j <= last ? proposalVertices : chainVertices, base + size_t(j), z[j]);
+      for (int j = needed; j < n; ++j) z[j].kind = kinds[j];
       fz = unit.contribution(ctx.measure, z, n, proposals.filmX[i], proposals.filmY[i], &tail);
       if (tail.known) {
-        chains.tailR[i] = tail.value.x;
-        chains.tailG[i] = tail.value.y;
-        chains.tailB[i] = tail.value.z;
+        chains.tailSet(i, tail.value);
         chains.tailKind[i] = measure;
       }
       const float lz = luminance(fz);
@@ -80,15 +82,13 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
     else
       ++rejected[proposals.reason[i]];
 
-    const StepDeposit before{chains.filmX[i], chains.filmY[i], Color(chains.colorR[i], chains.colorG[i], chains.colorB[i])};
+    const StepDeposit before{chains.filmX[i], chains.filmY[i], chains.colorAt(i)};
     const StepDeposit proposal{proposals.filmX[i], proposals.filmY[i], fz};
     if (accept && moves) {
       for (int j = first; j <= last; ++j) chainVertices.copyRow(base + size_t(j), proposalVertices, base + size_t(j));
       chains.filmX[i] = proposals.filmX[i];
       chains.filmY[i] = proposals.filmY[i];
-      chains.colorR[i] = fz.x;
-      chains.colorG[i] = fz.y;
-      chains.colorB[i] = fz.z;
+      chains.colorSet(i, fz);
       chains.fLum[i] = fzLum;
       chains.fKind[i] = uint8_t(mutationOf(kind).measure);
       // A tail cached in another measure may include vertices this mutation moved.

@@ -19,33 +19,21 @@ uint32_t pixelCode(float x, float y) {
 
 }  // namespace
 
-namespace {
-
-void writeRecord(DepositQueue& d, size_t i, int which, float x, float y, Color c) {
-  if (which == 0) {
-    d.x0[i] = x, d.y0[i] = y, d.r0[i] = c.x, d.g0[i] = c.y, d.b0[i] = c.z;
-  } else {
-    d.x1[i] = x, d.y1[i] = y, d.r1[i] = c.x, d.g1[i] = c.y, d.b1[i] = c.z;
-  }
-}
-
-}  // namespace
-
 void clearStepDeposits(DepositQueue& deposits, size_t i) {
-  writeRecord(deposits, i, 0, 0, 0, Color(0.0f));
-  writeRecord(deposits, i, 1, 0, 0, Color(0.0f));
+  for (size_t k = 0; k < kDepositsPerStep; ++k) deposits.setRow(i * kDepositsPerStep + k, DepositQueue::Row{});
 }
 
 void writeStepDeposits(const ErptSettings& s, const StepDeposit& before, const StepDeposit& proposal, float q,
                        bool moved, float energy, DepositQueue& deposits, size_t i) {
+  const size_t row = i * kDepositsPerStep;
   // Detailed balance (section 3.1): the mutation receives e q / m, the rest stays at x.
   if (s.expectedDeposit || s.flow == FlowRule::DetailedBalance) {
-    writeRecord(deposits, i, 0, before.filmX, before.filmY, before.color * (energy * (1 - q)));
-    if (q > 0) writeRecord(deposits, i, 1, proposal.filmX, proposal.filmY, proposal.color * (energy * q));
+    deposits.setRow(row, {before.filmX, before.filmY, before.color * (energy * (1 - q))});
+    if (q > 0) deposits.setRow(row + 1, {proposal.filmX, proposal.filmY, proposal.color * (energy * q)});
     return;
   }
   const StepDeposit& at = moved ? proposal : before;
-  writeRecord(deposits, i, 0, at.filmX, at.filmY, at.color * energy);
+  deposits.setRow(row, {at.filmX, at.filmY, at.color * energy});
 }
 
 double applyDeposits(ChainQueue& chains, const ProposalQueue& proposals, const DepositQueue& deposits, IndexRange range,
@@ -72,9 +60,10 @@ double applyDeposits(ChainQueue& chains, const ProposalQueue& proposals, const D
       chains.runPixel[i] = p;
       if (chains.runLength[i] > filters.maxConsecutive) stuckPixel = p;
     }
-    const float x0 = deposits.x0[i], y0 = deposits.y0[i], x1 = deposits.x1[i], y1 = deposits.y1[i];
-    splat(x0, y0, Color(deposits.r0[i], deposits.g0[i], deposits.b0[i]), pixelCode(x0, y0) == stuckPixel);
-    splat(x1, y1, Color(deposits.r1[i], deposits.g1[i], deposits.b1[i]), pixelCode(x1, y1) == stuckPixel);
+    for (size_t k = 0; k < kDepositsPerStep; ++k) {
+      const DepositQueue::Row d = deposits.row(i * kDepositsPerStep + k);
+      splat(d.x, d.y, d.energy, pixelCode(d.x, d.y) == stuckPixel);
+    }
     // A proposal goes "to" the pixel of its film position as soon as it has one: a lens
     // proposal from the start (valid or not), a caustic one once it reached the eye.
     if (filters.proposalTally &&

@@ -8,52 +8,6 @@
 
 namespace erpt {
 
-ErptQueues::ErptQueues(size_t capacity) {
-  chains.resize(capacity);
-  proposals.resize(capacity);
-  chainVertices.resize(capacity * kMaxChainVertices);
-  proposalVertices.resize(capacity * kMaxChainVertices);
-  prepareRays(rays, capacity);
-  prepareRays(shadowRays, capacity);
-  hits.resize(capacity);
-  deposits.resize(capacity);
-  for (size_t i = 0; i < capacity; ++i) chains.stepsLeft[i] = 0;
-}
-
-int loadChainPath(const ChainQueue& chains, const VertexQueue& vertices, size_t slot, PathVertex* out) {
-  const int n = chains.vertexCount[slot];
-  for (int j = 0; j < n; ++j) out[j] = loadVertex(vertices, slot * kMaxChainVertices + size_t(j));
-  return n;
-}
-
-void loadChainFromSeed(ChainQueue& chains, VertexQueue& chainVertices, size_t slot, const SeedStore& store,
-                       size_t seed, uint64_t key, uint32_t chainLength, float energyPerStep) {
-  const SeedQueue& s = store.seeds;
-  const uint32_t n = s.vertexCount[seed];
-  for (uint32_t j = 0; j < n; ++j)
-    chainVertices.copyRow(slot * kMaxChainVertices + j, store.vertices, s.vertexBegin[seed] + j);
-  const Color c = store.contribution(seed);
-  const Color color = c / luminance(c);
-  chains.key[slot] = key;
-  chains.step[slot] = 0;
-  chains.stepsLeft[slot] = chainLength;
-  chains.vertexCount[slot] = uint8_t(n);
-  uint8_t kinds[kMaxChainVertices];
-  for (uint32_t j = 0; j < n && j < uint32_t(kMaxChainVertices); ++j) kinds[j] = store.vertices.kind[s.vertexBegin[seed] + j];
-  chains.signature[slot] = packSignature(kinds, int(std::min<uint32_t>(n, kMaxChainVertices)));
-  chains.fKind[slot] = uint8_t(MutationKind::None);
-  chains.fLum[slot] = 0;
-  chains.tailKind[slot] = uint8_t(MutationKind::None);
-  chains.filmX[slot] = s.filmX[seed];
-  chains.filmY[slot] = s.filmY[seed];
-  chains.colorR[slot] = color.x;
-  chains.colorG[slot] = color.y;
-  chains.colorB[slot] = color.z;
-  chains.energy[slot] = energyPerStep;
-  chains.runPixel[slot] = kNoPixel;
-  chains.runLength[slot] = 0;
-}
-
 namespace {
 
 void reject(ProposalQueue& p, RayQueue& rays, size_t i, RejectReason why) {
@@ -100,12 +54,13 @@ void stageErptMutate(const ErptStepContext& ctx, const ChainQueue& chains, const
     // Lens starts read the film position and signature only; caustic starts read the vertices
     // from the eye to the source (loading a whole path per slot is what this stage costs most).
     if (family == MutationKind::Caustic) loadChainPath(chains, chainVertices, i, y);
-    const CurrentPath current{y, kinds, n, chains.filmX[i], chains.filmY[i]};
+    const float filmX = chains.filmX[i], filmY = chains.filmY[i];
+    const CurrentPath current{y, kinds, n, filmX, filmY};
     ProposalStart start;
-    start.filmX = chains.filmX[i];
-    start.filmY = chains.filmY[i];
-    unit.start(mc, current, size, uniformFloat(key, stepDim(step, kDimStart1)), uniformFloat(key, stepDim(step, kDimStart2)),
-               start);
+    start.filmX = filmX;
+    start.filmY = filmY;
+    unit.start(mc, current, filmX, filmY, size, uniformFloat(key, stepDim(step, kDimStart1)),
+               uniformFloat(key, stepDim(step, kDimStart2)), start);
     proposals.filmX[i] = start.filmX;
     proposals.filmY[i] = start.filmY;
     if (start.reject != kRejectNone) {

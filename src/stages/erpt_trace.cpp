@@ -53,10 +53,10 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
     const size_t chainRow = i * kMaxChainVertices + size_t(j);
     PathVertex window[3];
     for (int k = 0; k < 3; ++k)
-      if (j - 1 + k >= 0 && j - 1 + k < n) window[k] = loadVertex(chainVertices, chainRow - 1 + size_t(k));
+      if (j - 1 + k >= 0 && j - 1 + k < n) loadPathVertex(chainVertices, chainRow - 1 + size_t(k), window[k]);
     const PathVertex& expected = window[1];
-    const Vec3 origin{rays.orgX[i], rays.orgY[i], rays.orgZ[i]};
-    const Vec3 dir = normalize(Vec3{rays.dirX[i], rays.dirY[i], rays.dirZ[i]});
+    const Vec3 origin = rays.orgAt(i);
+    const Vec3 dir = normalize(rays.dirAt(i));
     const size_t row = chainRow;
     // Reaching the light by tracing ends the walk only where the proposal has nothing to
     // connect to.
@@ -72,7 +72,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
       z.ns = z.ng = -dir;
       z.kind = kEnvironmentVertex;
       z.emitter = expected.emitter;
-      storeVertex(proposalVertices, row, z);
+      storePathVertex(proposalVertices, row, z);
       complete(proposals, rays, i);
       continue;
     }
@@ -92,7 +92,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
         reject(proposals, rays, i, kRejectKindChanged);
         continue;
       }
-      storeVertex(proposalVertices, row, z);
+      storePathVertex(proposalVertices, row, z);
       complete(proposals, rays, i);
       continue;
     }
@@ -105,7 +105,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
       reject(proposals, rays, i, kRejectKindChanged);
       continue;
     }
-    storeVertex(proposalVertices, row, z);
+    storePathVertex(proposalVertices, row, z);
 
     if (expected.kind == kSpecularVertex) {
       // Follow the same lobe (reflection or transmission) as the current path.
@@ -148,7 +148,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
       setConnection(shadowRays, i, z, eye, false, normalize(eye - z.p));
     } else if (connectTo > 0) {
       // Connect to the current path's fixed vertex, which stays where it is.
-      const PathVertex target = loadVertex(chainVertices, i * kMaxChainVertices + size_t(connectTo));
+      const PathVertex target = loadPathVertex(chainVertices, i * kMaxChainVertices + size_t(connectTo));
       const bool environment = target.kind == kEnvironmentVertex;
       const Vec3 d = environment ? -target.ns : normalize(target.p - z.p);
       setConnection(shadowRays, i, z, environment ? Vec3(0.0f) : offsetOrigin(target.p, target.ng, -d), environment, d);

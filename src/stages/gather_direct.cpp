@@ -8,13 +8,13 @@ void stageGatherDirect(const StageContext& ctx, const RayQueue& shadowRays, cons
                        const HitQueue& bsdfHits, DirectSampleQueue& q, IndexRange range) {
   const Emitter* env = ctx.scene.environment();
   for (size_t i = range.begin; i < range.end; ++i) {
-    Color total{q.radianceR[i], q.radianceG[i], q.radianceB[i]};
+    Color total = q.radianceAt(i);
     // An occluded shadow ray has tfar = -inf; a disabled one carries zero contribution.
-    if (shadowRays.tfar[i] >= 0) total += Color(q.shadowR[i], q.shadowG[i], q.shadowB[i]);
+    if (shadowRays.tfar[i] >= 0) total += q.shadowAt(i);
 
-    Color weight{q.bsdfR[i], q.bsdfG[i], q.bsdfB[i]};
+    Color weight = q.bsdfAt(i);
     if (!isBlack(weight)) {
-      Vec3 dir{bsdfRays.dirX[i], bsdfRays.dirY[i], bsdfRays.dirZ[i]};
+      Vec3 dir = bsdfRays.dirAt(i);
       float pdf = q.bsdfPdf[i];  // 0: a Dirac lobe, which next-event estimation cannot produce
       if (bsdfHits.geomID[i] == kNoHit) {
         if (env) total += weight * env->radiance * emitterHitWeight(pdf, ctx.lights.pdfEnvironment());
@@ -23,15 +23,13 @@ void stageGatherDirect(const StageContext& ctx, const RayQueue& shadowRays, cons
         Color le = ctx.lights.emitted(tri, -dir);
         if (!isBlack(le)) {
           SurfacePoint lp = surfaceAt(ctx.scene.mesh, tri, bsdfHits.u[i], bsdfHits.v[i]);
-          Vec3 from{q.hitX[i], q.hitY[i], q.hitZ[i]};
+          Vec3 from = q.hitAt(i);
           float lightPdf = ctx.lights.pdfTriangle(tri, from, lp.position, lp.geometricNormal);
           total += weight * le * emitterHitWeight(pdf, lightPdf);
         }
       }
     }
-    q.radianceR[i] = total.x;
-    q.radianceG[i] = total.y;
-    q.radianceB[i] = total.z;
+    q.radianceSet(i, total);
   }
 }
 

@@ -27,21 +27,20 @@ uint32_t copyChain(const VertexQueue& history, int32_t last, VertexQueue& out, s
 
 void appendSeed(SeedStore& store, const PathQueue& paths, uint32_t id, bool explicitLight, float weight, Color estimate,
                 float pLength, float pLight, uint32_t begin) {
-  size_t i = store.seeds.size();
+  SeedQueue::Row seed;
+  seed.pixel = paths.pixel[id];
+  seed.filmX = paths.filmX[id];
+  seed.filmY = paths.filmY[id];
+  seed.explicitLight = explicitLight;
+  seed.misWeight = weight;
+  seed.estimate = estimate;
+  seed.pLength = pLength;
+  seed.pLight = pLight;
+  seed.vertexBegin = begin;
+  seed.vertexCount = uint32_t(store.vertices.size()) - begin;
+  const size_t i = store.seeds.size();
   store.seeds.resize(i + 1);
-  SeedQueue& s = store.seeds;
-  s.pixel[i] = paths.pixel[id];
-  s.filmX[i] = paths.filmX[id];
-  s.filmY[i] = paths.filmY[id];
-  s.explicitLight[i] = explicitLight;
-  s.misWeight[i] = weight;
-  s.estimateR[i] = estimate.x;
-  s.estimateG[i] = estimate.y;
-  s.estimateB[i] = estimate.z;
-  s.pLength[i] = pLength;
-  s.pLight[i] = pLight;
-  s.vertexBegin[i] = begin;
-  s.vertexCount[i] = uint32_t(store.vertices.size()) - begin;
+  store.seeds.setRow(i, seed);
 }
 
 }  // namespace
@@ -62,8 +61,7 @@ void stageRecordSeeds(const StageContext& ctx, const PathQueue& paths, const Pat
       store.vertices.pdfForward[last] = 0;
       // What next-event estimation would have used for this light point.
       float pLight = environment ? ctx.lights.pdfEnvironment() : ctx.lights.pdfAreaTriangle(hits.primID[k]);
-      Color e{slots.emitR[k], slots.emitG[k], slots.emitB[k]};
-      appendSeed(store, paths, id, false, slots.emitWeight[k], e, slots.pLengthHere[k], pLight, begin);
+      appendSeed(store, paths, id, false, slots.emitWeight[k], slots.emitAt(k), slots.pLengthHere[k], pLight, begin);
     }
     if (slots.neeWeight[k] > 0 && shadowRays.tfar[k] >= 0) {
       uint32_t begin = copyChain(h, vertex, store.vertices, scratch);
@@ -72,23 +70,16 @@ void stageRecordSeeds(const StageContext& ctx, const PathQueue& paths, const Pat
       // history's kind: a plastic coat's Dirac lobe, say).
       store.vertices.kind[store.vertices.size() - 1] = kNonSpecularVertex;
       store.vertices.pdfForward[store.vertices.size() - 1] = slots.neeBsdfPdf[k];
-      size_t l = store.vertices.size();
+      const size_t l = store.vertices.size();
+      VertexQueue::Row light;
+      light.p = slots.neeLightAt(k);
+      light.ns = light.ng = slots.neeLightNAt(k);
+      light.kind = slots.neeLightKind[k];
+      light.emitter = slots.neeLightEmitter[k];
+      light.parent = int32_t(l - 1);
       store.vertices.resize(l + 1);
-      VertexQueue& v = store.vertices;
-      v.px[l] = slots.neeLightX[k];
-      v.py[l] = slots.neeLightY[k];
-      v.pz[l] = slots.neeLightZ[k];
-      v.nsX[l] = v.ngX[l] = slots.neeLightNX[k];
-      v.nsY[l] = v.ngY[l] = slots.neeLightNY[k];
-      v.nsZ[l] = v.ngZ[l] = slots.neeLightNZ[k];
-      v.material[l] = -1;
-      v.u[l] = v.v[l] = 0;
-      v.kind[l] = slots.neeLightKind[k];
-      v.emitter[l] = slots.neeLightEmitter[k];
-      v.pdfForward[l] = 0;
-      v.parent[l] = int32_t(l - 1);
-      Color weighted{slots.neeR[k], slots.neeG[k], slots.neeB[k]};
-      appendSeed(store, paths, id, true, slots.neeWeight[k], weighted / slots.neeWeight[k], slots.pLengthHere[k],
+      store.vertices.setRow(l, light);
+      appendSeed(store, paths, id, true, slots.neeWeight[k], slots.neeAt(k) / slots.neeWeight[k], slots.pLengthHere[k],
                  slots.neeLightPdf[k], begin);
     }
   }

@@ -22,15 +22,13 @@ void stageShadeDirect(const StageContext& ctx, const RayQueue& cameraRays, const
     q.bsdfPdf[i] = 0;
     disableRay(shadowRays, i);
     disableRay(bsdfRays, i);
-    Vec3 dir{cameraRays.dirX[i], cameraRays.dirY[i], cameraRays.dirZ[i]};
+    Vec3 dir = cameraRays.dirAt(i);
     if (hits.geomID[i] == kNoHit) {
       if (env) radiance = env->radiance;
     } else {
       SurfacePoint sp = surfaceAt(ctx.scene.mesh, hits.primID[i], hits.u[i], hits.v[i]);
       radiance = ctx.lights.emitted(sp.triangle, -dir);
-      q.hitX[i] = sp.position.x;
-      q.hitY[i] = sp.position.y;
-      q.hitZ[i] = sp.position.z;
+      q.hitSet(i, sp.position);
       if (ctx.maxDepth != 1) {
         uint64_t key = sampleKey(ctx.seed, q.pixel[i], q.sample[i]);
         const Material& m = ctx.scene.materials[sp.material];

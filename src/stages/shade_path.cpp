@@ -9,19 +9,7 @@ namespace erpt {
 
 namespace {
 
-Color throughputOf(const PathQueue& p, uint32_t id) { return {p.throughputR[id], p.throughputG[id], p.throughputB[id]}; }
-
-void addRadiance(PathQueue& p, uint32_t id, Color c) {
-  p.radianceR[id] += c.x;
-  p.radianceG[id] += c.y;
-  p.radianceB[id] += c.z;
-}
-
-// A seed-recording vertex: the shared vertex layout (erpt_path.h) plus its history link.
-void writeVertex(VertexQueue& q, size_t i, const PathVertex& v, int32_t parent) {
-  storeVertex(q, i, v);
-  q.parent[i] = parent;
-}
+void addRadiance(PathQueue& p, uint32_t id, Color c) { p.radianceSet(id, p.radianceAt(id) + c); }
 
 // Far point standing in for the environment along a direction (for seed vertices).
 Vec3 environmentPoint(Vec3 from, Vec3 dir) { return from + dir * 1e6f; }
@@ -36,16 +24,16 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     const uint32_t id = slots.path[k];
     const size_t vertex = history.base + k;
     slots.alive[k] = 0;
-    slots.neeR[k] = slots.neeG[k] = slots.neeB[k] = 0;
+    slots.neeSet(k, Color(0.0f));
     if (recording) {
       slots.emitWeight[k] = slots.neeWeight[k] = 0;
       slots.pLengthHere[k] = paths.pLength[id];
     }
     disableRay(shadowRays, k);
     const uint32_t depth = paths.depth[id];  // segments so far, including the ray just traced
-    const Color throughput = throughputOf(paths, id);
-    const Vec3 dir{rays.dirX[k], rays.dirY[k], rays.dirZ[k]};
-    const Vec3 prev{paths.prevX[id], paths.prevY[id], paths.prevZ[id]};
+    const Color throughput = paths.throughputAt(id);
+    const Vec3 dir = rays.dirAt(k);
+    const Vec3 prev = paths.prevAt(id);
     const float prevPdf = paths.prevPdf[id];
 
     if (hits.geomID[k] == kNoHit) {
@@ -53,24 +41,22 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
       const float w = emitterHitWeight(prevPdf, ctx.lights.pdfEnvironment());
       addRadiance(paths, id, throughput * env->radiance * w);
       if (recording) {
-        PathVertex v;
+        VertexQueue::Row v;  // the whole row: pdfForward 0 and the parent link are written too
         v.p = environmentPoint(prev, dir);
         v.ns = v.ng = -dir;
         v.kind = kEnvironmentVertex;
         v.emitter = int32_t(env - ctx.scene.emitters.data());
-        writeVertex(*history.vertices, vertex, v, paths.lastVertex[id]);
+        v.parent = paths.lastVertex[id];
+        history.vertices->setRow(vertex, v);
         slots.emitWeight[k] = w;
-        Color e = throughput * env->radiance;
-        slots.emitR[k] = e.x;
-        slots.emitG[k] = e.y;
-        slots.emitB[k] = e.z;
+        slots.emitSet(k, throughput * env->radiance);
       }
       continue;
     }
     const SurfacePoint sp = surfaceAt(ctx.scene.mesh, hits.primID[k], hits.u[k], hits.v[k]);
     const Material& m = ctx.scene.materials[sp.material];
     if (recording) {
-      PathVertex v;
+      VertexQueue::Row v;  // the whole row: pdfForward 0 and the parent link are written too
       v.p = sp.position;
       v.ns = sp.shading.n;
       v.ng = sp.geometricNormal;
@@ -79,7 +65,8 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
       v.v = sp.v;
       v.kind = m.isPureSpecular() ? kSpecularVertex : kNonSpecularVertex;
       v.emitter = ctx.scene.mesh.emitter[sp.triangle];
-      writeVertex(*history.vertices, vertex, v, paths.lastVertex[id]);
+      v.parent = paths.lastVertex[id];
+      history.vertices->setRow(vertex, v);
       paths.lastVertex[id] = int32_t(vertex);
     }
     const Color le = ctx.lights.emitted(sp.triangle, -dir);
@@ -89,9 +76,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
       addRadiance(paths, id, throughput * le * w);
       if (recording) {
         slots.emitWeight[k] = w;
-        slots.emitR[k] = throughput.x * le.x;
-        slots.emitG[k] = throughput.y * le.y;
-        slots.emitB[k] = throughput.z * le.z;
+        slots.emitSet(k, throughput * le);
       }
     }
     // A path of maxDepth segments can grow no further (-1: unbounded).
@@ -104,10 +89,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     LightConnection lc;
     if (connectToLight(ctx.lights, sp, m, colors, wi, uniformFloat(key, bounceDim(depth, kLightPick)),
                        uniformFloat(key, bounceDim(depth, kLight1)), uniformFloat(key, bounceDim(depth, kLight2)), lc)) {
-      Color c = throughput * lc.contribution;
-      slots.neeR[k] = c.x;
-      slots.neeG[k] = c.y;
-      slots.neeB[k] = c.z;
+      slots.neeSet(k, throughput * lc.contribution);
       setRay(shadowRays, k, lc.origin, lc.direction, 0.0f, lc.tfar);
       if (recording) {
         slots.neeWeight[k] = lc.misWeight;
@@ -115,14 +97,8 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
         slots.neeLightPdf[k] = lc.light.pdfLight;
         slots.neeLightKind[k] = lc.light.environment ? kEnvironmentVertex : kLightVertex;
         slots.neeLightEmitter[k] = lc.light.emitter;
-        Vec3 lp = lc.light.environment ? environmentPoint(sp.position, lc.direction) : lc.light.position;
-        Vec3 ln = lc.light.environment ? -lc.direction : lc.light.normal;
-        slots.neeLightX[k] = lp.x;
-        slots.neeLightY[k] = lp.y;
-        slots.neeLightZ[k] = lp.z;
-        slots.neeLightNX[k] = ln.x;
-        slots.neeLightNY[k] = ln.y;
-        slots.neeLightNZ[k] = ln.z;
+        slots.neeLightSet(k, lc.light.environment ? environmentPoint(sp.position, lc.direction) : lc.light.position);
+        slots.neeLightNSet(k, lc.light.environment ? -lc.direction : lc.light.normal);
       }
     }
 
@@ -143,13 +119,9 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
       next = next / q;
       paths.pLength[id] *= q;
     }
-    paths.throughputR[id] = next.x;
-    paths.throughputG[id] = next.y;
-    paths.throughputB[id] = next.z;
+    paths.throughputSet(id, next);
     paths.prevPdf[id] = bs.delta ? 0.0f : bs.pdf;
-    paths.prevX[id] = sp.position.x;
-    paths.prevY[id] = sp.position.y;
-    paths.prevZ[id] = sp.position.z;
+    paths.prevSet(id, sp.position);
     paths.depth[id] = depth + 1;
     const Vec3 wo = sp.shading.toWorld(bs.wo);
     setRay(rays, k, offsetOrigin(sp.position, sp.geometricNormal, wo), wo, 0.0f, std::numeric_limits<float>::infinity());
@@ -162,9 +134,7 @@ void stageShadowResolve(const RayQueue& shadowRays, const PathSlotQueue& slots, 
     // Occluded rays come back with tfar = -inf; disabled ones carry no contribution.
     if (!(shadowRays.tfar[k] >= 0)) continue;
     const uint32_t id = slots.path[k];
-    paths.radianceR[id] += slots.neeR[k];
-    paths.radianceG[id] += slots.neeG[k];
-    paths.radianceB[id] += slots.neeB[k];
+    addRadiance(paths, id, slots.neeAt(k));
   }
 }
 

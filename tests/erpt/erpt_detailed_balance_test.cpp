@@ -90,8 +90,8 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
       setRay(back.rays, k, ray.origin, ray.direction, ray.tnear, ray.tfar);
     } else {
       const int s = p.regenLast[i] + 1;
-      const PathVertex src = loadVertex(yVertices, i * kMaxChainVertices + size_t(s));
-      const Vec3 d = normalize(loadVertex(yVertices, i * kMaxChainVertices + size_t(s - 1)).p - src.p);
+      const PathVertex src = loadPathVertex(yVertices, i * kMaxChainVertices + size_t(s));
+      const Vec3 d = normalize(loadPathVertex(yVertices, i * kMaxChainVertices + size_t(s - 1)).p - src.p);
       back.proposals.cursor[k] = int8_t(s - 1);
       const bool point = src.emitter >= 0 && w.scene.emitters[size_t(src.emitter)].kind == EmitterKind::Point;
       setRay(back.rays, k, point ? src.p : offsetOrigin(src.p, src.ng, d), d, 0.0f, std::numeric_limits<float>::infinity());
@@ -126,7 +126,7 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
     loadChainPath(zChains, zVertices, k, pz);
     // The walk back reproduces y's regenerated vertices.
     for (int j = forward.proposals.regenFirst[i]; j <= forward.proposals.regenLast[i]; ++j) {
-      const PathVertex back1 = loadVertex(back.proposalVertices, k * kMaxChainVertices + size_t(j));
+      const PathVertex back1 = loadPathVertex(back.proposalVertices, k * kMaxChainVertices + size_t(j));
       EXPECT_LT(length(back1.p - py[j].p), 1e-3f) << c.name << " slot " << i << " vertex " << j;
     }
     const double fy = luminance(contributionFor(c.kind, mc, py, n, y.filmX[i], y.filmY[i]));

@@ -82,7 +82,7 @@ TEST(NoiseFilters, ConsecutiveSampleFilterCapsRunsOnOnePixel) {
                       IndexRange{0, q.chains.size()});
       for (size_t i = 0; i < loaded; ++i) {
         // The paper's rule: one record per step, at the chain's path after the step.
-        const uint32_t pixel = uint32_t(std::floor(q.deposits.y0[i])) * 1024u + uint32_t(std::floor(q.deposits.x0[i]));
+        const uint32_t pixel = uint32_t(std::floor(q.deposits.y[i * kDepositsPerStep])) * 1024u + uint32_t(std::floor(q.deposits.x[i * kDepositsPerStep]));
         const bool deposited = applyDeposits(q.chains, q.proposals, q.deposits, IndexRange{i, i + 1}, *w.density, film, filters) > 0;
         if (!deposited) {
           run[i] = 0;
@@ -181,11 +181,11 @@ TEST(DetailedBalanceFlow, MutationsReceiveTheAcceptedShareAndTheSeedKeepsTheRest
     flowed += qa > 0;
     EXPECT_EQ(q.chains.filmX[i], before.filmX[i]);
     EXPECT_EQ(q.chains.filmY[i], before.filmY[i]);
-    EXPECT_EQ(q.deposits.x0[i], before.filmX[i]);
-    EXPECT_NEAR(luminance(Color(q.deposits.r0[i], q.deposits.g0[i], q.deposits.b0[i])), 0.25f * (1 - qa), 1e-5);
-    EXPECT_NEAR(luminance(Color(q.deposits.r1[i], q.deposits.g1[i], q.deposits.b1[i])), 0.25f * qa, 1e-5);
+    EXPECT_EQ(q.deposits.x[i * kDepositsPerStep], before.filmX[i]);
+    EXPECT_NEAR(luminance(q.deposits.energyAt(i * kDepositsPerStep + 0)), 0.25f * (1 - qa), 1e-5);
+    EXPECT_NEAR(luminance(q.deposits.energyAt(i * kDepositsPerStep + 1)), 0.25f * qa, 1e-5);
     if (qa > 0) {
-      EXPECT_EQ(q.deposits.x1[i], q.proposals.filmX[i]);
+      EXPECT_EQ(q.deposits.x[i * kDepositsPerStep + 1], q.proposals.filmX[i]);
     }
   }
   EXPECT_GT(flowed, loaded / 3);

@@ -102,7 +102,7 @@ void checkCaustic(CausticAngle angle) {
   std::vector<uint64_t> thetas(32, 0), phis(16, 0);
   for (size_t i = 0; i < kSamples; ++i) {
     ASSERT_EQ(q.proposals.mutation[i], uint8_t(ctx.causticKind()));
-    const Vec3 d = normalize(Vec3{q.rays.dirX[i], q.rays.dirY[i], q.rays.dirZ[i]});
+    const Vec3 d = normalize(q.rays.dirAt(i));
     const Vec3 local = frame.toLocal(d);
     const double theta = std::atan2(std::sqrt(double(local.x) * local.x + double(local.y) * local.y), double(local.z));
     const double unit = angle == CausticAngle::Veach

@@ -19,7 +19,7 @@ std::string cornell() { return test::sharedScenesDir() + "/cornell-box/scene.xml
 std::string defaultScene() { return test::sourceDir() + "/scenes/default/scene.xml"; }
 
 bool sameVertex(const VertexQueue& a, size_t i, const VertexQueue& b, size_t j) {
-  return a.px[i] == b.px[j] && a.py[i] == b.py[j] && a.pz[i] == b.pz[j] && a.kind[i] == b.kind[j] &&
+  return a.pX[i] == b.pX[j] && a.pY[i] == b.pY[j] && a.pZ[i] == b.pZ[j] && a.kind[i] == b.kind[j] &&
          a.material[i] == b.material[j];
 }
 
@@ -67,8 +67,8 @@ TEST(ErptStages, AcceptKeepsExactlyTheAcceptedProposals) {
       EXPECT_EQ(q.chains.stepsLeft[i], before.stepsLeft[i] - 1);
       EXPECT_EQ(q.chains.step[i], before.step[i] + 1);
       // The paper's rule: one deposit of e_d at the (possibly new) current path.
-      EXPECT_EQ(q.deposits.x0[i], q.chains.filmX[i]);
-      EXPECT_NEAR(luminance(Color(q.deposits.r0[i], q.deposits.g0[i], q.deposits.b0[i])), depositEnergy, 1e-5);
+      EXPECT_EQ(q.deposits.x[i * kDepositsPerStep], q.chains.filmX[i]);
+      EXPECT_NEAR(luminance(q.deposits.energyAt(i * kDepositsPerStep + 0)), depositEnergy, 1e-5);
     }
     EXPECT_GT(accepted, loaded / 10) << file;
     EXPECT_GT(rejected, loaded / 50) << file;
@@ -92,11 +92,11 @@ TEST(ErptStages, ExpectedDepositsSplitByAcceptance) {
                   IndexRange{0, q.chains.size()});
   for (size_t i = 0; i < loaded; ++i) {
     const float qa = q.proposals.acceptance[i];
-    EXPECT_EQ(q.deposits.x0[i], before.filmX[i]);
-    EXPECT_NEAR(luminance(Color(q.deposits.r0[i], q.deposits.g0[i], q.deposits.b0[i])), 0.5f * (1 - qa), 1e-5);
-    EXPECT_NEAR(luminance(Color(q.deposits.r1[i], q.deposits.g1[i], q.deposits.b1[i])), 0.5f * qa, 1e-5);
+    EXPECT_EQ(q.deposits.x[i * kDepositsPerStep], before.filmX[i]);
+    EXPECT_NEAR(luminance(q.deposits.energyAt(i * kDepositsPerStep + 0)), 0.5f * (1 - qa), 1e-5);
+    EXPECT_NEAR(luminance(q.deposits.energyAt(i * kDepositsPerStep + 1)), 0.5f * qa, 1e-5);
     if (qa > 0) {
-      EXPECT_EQ(q.deposits.x1[i], q.proposals.filmX[i]);
+      EXPECT_EQ(q.deposits.x[i * kDepositsPerStep + 1], q.proposals.filmX[i]);
     }
   }
 }

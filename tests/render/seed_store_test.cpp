@@ -34,14 +34,14 @@ SeededRender renderWithSeeds(const Scene& scene, int size, int spp, int threads 
   return out;
 }
 
-Vec3 vertexPosition(const VertexQueue& v, size_t i) { return {v.px[i], v.py[i], v.pz[i]}; }
+Vec3 vertexPosition(const VertexQueue& v, size_t i) { return v.pAt(i); }
 
 // Where the ray from vertex i towards vertex j started: the path tracer pushes ray origins
 // off the surface (offsetOrigin), so directions are recomputed from that point, as traced.
 Vec3 rayOrigin(const VertexQueue& v, size_t i, size_t j) {
   Vec3 x = vertexPosition(v, i);
   if (v.kind[i] == kEyeVertex) return x;
-  return offsetOrigin(x, Vec3(v.ngX[i], v.ngY[i], v.ngZ[i]), vertexPosition(v, j) - x);
+  return offsetOrigin(x, v.ngAt(i), vertexPosition(v, j) - x);
 }
 
 class SeedStoreTest : public ::testing::TestWithParam<const char*> {
@@ -96,7 +96,7 @@ TEST_P(SeedStoreTest, DensitiesAndEstimatesRecomputeFromVertices) {
       const bool toLight = explicitLight && i + 2 == n;  // next-event rays aim from x itself
       Vec3 wi = normalize(rayOrigin(v, at - 1, at) - x);
       Vec3 wo = normalize(vertexPosition(v, at + 1) - (toLight ? x : rayOrigin(v, at, at + 1)));
-      Frame frame(Vec3(v.nsX[at], v.nsY[at], v.nsZ[at]));
+      Frame frame(v.nsAt(at));
       const Material& m = sc.materials[v.material[at]];
       SurfaceColors colors = sc.surfaceColors(v.material[at], v.u[at], v.v[at]);
       Vec3 wiL = frame.toLocal(wi), woL = frame.toLocal(wo);
@@ -119,7 +119,7 @@ TEST_P(SeedStoreTest, DensitiesAndEstimatesRecomputeFromVertices) {
         if (v.kind[at + 1] == kEnvironmentVertex) {
           estimate *= f / s.pLight[k];
         } else {
-          Vec3 nl{v.ngX[at + 1], v.ngY[at + 1], v.ngZ[at + 1]};
+          Vec3 nl = v.ngAt(at + 1);
           Vec3 d = l - x;
           float dist2 = dot(d, d);
           estimate *= f * (std::abs(dot(nl, wo)) / (dist2 * s.pLight[k]));
@@ -131,7 +131,7 @@ TEST_P(SeedStoreTest, DensitiesAndEstimatesRecomputeFromVertices) {
     // The scenes have one emitter each: its radiance.
     Color le = sc.emitters[0].radiance;
     estimate = estimate * le / s.pLength[k];
-    Color recorded{s.estimateR[k], s.estimateG[k], s.estimateB[k]};
+    Color recorded = s.estimateAt(k);
     for (int ch = 0; ch < 3; ++ch)
       EXPECT_NEAR(estimate[ch], recorded[ch], 2e-3f * std::abs(recorded[ch]) + 1e-6f)
           << "seed " << k << " channel " << ch << " (" << n << " vertices, explicit " << explicitLight << ")";

@@ -58,8 +58,8 @@ TEST(StageShadow, MarksExactlyTheOccludedRays) {
     setRay(rays, k, Vec3(x, y, 1), Vec3(0, 0, -1), 0.0f, tfar);
     blocked[k] = std::abs(x) < 1 && std::abs(y) < 1 && tfar > 1;
     slots.path[k] = uint32_t(k);
-    slots.neeR[k] = slots.neeG[k] = slots.neeB[k] = 1;
-    paths.radianceR[k] = paths.radianceG[k] = paths.radianceB[k] = 0;
+    slots.neeSet(k, Color(1.0f));
+    paths.radianceSet(k, Color(0.0f));
   }
   tracer.occluded(rays, {0, n});
   stageShadowResolve(rays, slots, paths, {0, n});
@@ -92,7 +92,7 @@ TEST(StageGenerate, FilmPositionsAreStratifiedPerPixel) {
     for (int s = 0; s < spp; ++s) {
       size_t i = size_t(p) * spp + s;
       // Recover the film position by projecting a point along the ray.
-      Vec3 o{rays.orgX[i], rays.orgY[i], rays.orgZ[i]}, d{rays.dirX[i], rays.dirY[i], rays.dirZ[i]};
+      Vec3 o = rays.orgAt(i), d = rays.dirAt(i);
       float fx, fy;
       ASSERT_TRUE(camera.project(o + d * 2.0f, fx, fy));
       float lx = fx - float(p % w), ly = fy - float(p / w);  // position within the pixel

@@ -33,7 +33,7 @@ ErptStepContext ErptWorld::stepContext(MutationStrategy strategy) const {
 
 int ErptWorld::seedPath(size_t seed, PathVertex* out) const {
   const int n = int(seeds.seeds.vertexCount[seed]);
-  for (int j = 0; j < n; ++j) out[j] = loadVertex(seeds.vertices, seeds.seeds.vertexBegin[seed] + size_t(j));
+  for (int j = 0; j < n; ++j) out[j] = loadPathVertex(seeds.vertices, seeds.seeds.vertexBegin[seed] + size_t(j));
   return n;
 }
 

@@ -1,0 +1,50 @@
+// The chain queues of ERPT: allocation, a chain's path as values, a chain started at a seed.
+#include <algorithm>
+
+#include "erpt/erpt_stages.h"
+#include "erpt/tracer.h"
+
+namespace erpt {
+
+ErptQueues::ErptQueues(size_t capacity) {
+  chains.resize(capacity);
+  proposals.resize(capacity);
+  chainVertices.resize(capacity * kMaxChainVertices);
+  proposalVertices.resize(capacity * kMaxChainVertices);
+  prepareRays(rays, capacity);
+  prepareRays(shadowRays, capacity);
+  hits.resize(capacity);
+  deposits.resize(capacity * kDepositsPerStep);
+  for (size_t i = 0; i < capacity; ++i) chains.stepsLeft[i] = 0;
+}
+
+int loadChainPath(const ChainQueue& chains, const VertexQueue& vertices, size_t slot, PathVertex* out) {
+  const int n = chains.vertexCount[slot];
+  for (int j = 0; j < n; ++j) loadPathVertex(vertices, slot * kMaxChainVertices + size_t(j), out[j]);
+  return n;
+}
+
+void loadChainFromSeed(ChainQueue& chains, VertexQueue& chainVertices, size_t slot, const SeedStore& store,
+                       size_t seed, uint64_t key, uint32_t chainLength, float energyPerStep) {
+  const SeedQueue& s = store.seeds;
+  const uint32_t n = std::min<uint32_t>(s.vertexCount[seed], uint32_t(kMaxChainVertices));
+  uint8_t kinds[kMaxChainVertices];
+  for (uint32_t j = 0; j < n; ++j) {
+    chainVertices.copyRow(slot * kMaxChainVertices + j, store.vertices, s.vertexBegin[seed] + j);
+    kinds[j] = store.vertices.kind[s.vertexBegin[seed] + j];
+  }
+  const Color c = store.contribution(seed);
+  ChainQueue::Row chain;  // no cached f or tail yet (MutationKind::None = 0)
+  chain.key = key;
+  chain.stepsLeft = chainLength;
+  chain.vertexCount = uint8_t(n);
+  chain.signature = packSignature(kinds, int(n));
+  chain.filmX = s.filmX[seed];
+  chain.filmY = s.filmY[seed];
+  chain.color = c / luminance(c);
+  chain.energy = energyPerStep;
+  chain.runPixel = kNoPixel;
+  chains.setRow(slot, chain);
+}
+
+}  // namespace erpt
