@@ -25,7 +25,7 @@ struct ErptFixture : ErptQueues {
   PixelFilter filter{FilterKind::Box};
   LightSampler lights{scene};
   FilmDensity density{filter, kSize, kSize};
-  ErptStepContext ctx{MeasureContext{scene, lights, camera, density}};
+  ErptStepContext ctx{MeasureContext{scene, lights, camera, density}, ErptSettings{}};
   SeedStore seeds;
   RayQueue eyeRays, tracedShadowRays;
   ProposalQueue mutated, walked;  // proposals after mutate, after walk + connect

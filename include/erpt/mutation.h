@@ -19,6 +19,7 @@
 #include <limits>
 
 #include "erpt/erpt_path.h"
+#include "erpt/queues.h"
 
 namespace erpt {
 
@@ -44,17 +45,20 @@ struct CurrentPath {
   float filmX, filmY;
 };
 
+struct ErptStepContext;
+
 struct Mutation {
   MutationKind kind;
   // The unit whose contribution measure this one samples in (equal for units that differ only
   // in their perturbation's distribution): f and the fixed tail are cached per measure.
   MutationKind measure;
   bool (*applies)(const uint8_t* kinds, int n);
-  // Samples a proposal from y with perturbation size `size` (pixels) and uniforms u1, u2. The
-  // start reads y's vertices, kinds and n; its film position comes in registers (filmX,
-  // filmY: reading it back from a struct just written cost the mutate stage 2x in stalls).
-  void (*start)(const MeasureContext& c, const CurrentPath& y, float filmX, float filmY, float size, float u1, float u2,
-                ProposalStart& out);
+  // Starts the proposals of the slots in `range` whose proposal chose this unit (kind set,
+  // state walking, perturbSize set by the mutate stage): samples each perturbation from the
+  // chain's path y with the proposal's size, writes the first ray, the film position, the
+  // walk direction and the regenerated range, or rejects (src/mutations/start_each.h).
+  void (*startRange)(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+                     ProposalQueue& proposals, RayQueue& rays, IndexRange range);
   // First vertex of the fixed tail (erpt_path.h): f reads vertices up to it (inclusive) when
   // the tail is cached; n: no tail.
   int (*tailStart)(const uint8_t* kinds, int n);

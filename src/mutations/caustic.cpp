@@ -15,6 +15,7 @@
 #include "erpt/mutation.h"
 #include "erpt/surface.h"
 #include "path_factors.h"
+#include "start_each.h"
 
 namespace erpt {
 
@@ -120,6 +121,16 @@ void startVeach(const MeasureContext& c, const CurrentPath& y, float, float, flo
   startAlong(c, y, s, normalize(f.toWorld(Vec3{st * std::cos(phi), st * std::sin(phi), std::cos(theta)})), out);
 }
 
+void startErptRange(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+                    ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
+  startEach<true>(MutationKind::Caustic, ctx, chains, chainVertices, proposals, rays, range, startErpt);
+}
+
+void startVeachRange(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+                     ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
+  startEach<true>(MutationKind::CausticVeach, ctx, chains, chainVertices, proposals, rays, range, startVeach);
+}
+
 float erptRatio(const MeasureContext&, const CurrentPath&, const CurrentPath&, float) {
   // p(theta) / (2 pi sin theta) both ways, at the same theta.
   return 1.0f;
@@ -137,9 +148,9 @@ float veachRatio(const MeasureContext& c, const CurrentPath& y, const CurrentPat
 
 }  // namespace
 
-extern const Mutation kCausticMutation{MutationKind::Caustic, MutationKind::Caustic, appliesToCausticPaths, startErpt,
+extern const Mutation kCausticMutation{MutationKind::Caustic, MutationKind::Caustic, appliesToCausticPaths, startErptRange,
                                        causticTailStart, causticContribution, erptRatio};
 extern const Mutation kCausticVeachMutation{MutationKind::CausticVeach, MutationKind::Caustic, appliesToCausticPaths,
-                                            startVeach, causticTailStart, causticContribution, veachRatio};
+                                            startVeachRange, causticTailStart, causticContribution, veachRatio};
 
 }  // namespace erpt

@@ -10,6 +10,7 @@
 #include "erpt/camera.h"
 #include "erpt/mutation.h"
 #include "path_factors.h"
+#include "start_each.h"
 
 namespace erpt {
 
@@ -97,6 +98,16 @@ void startDisk(const MeasureContext& c, const CurrentPath& y, float filmX, float
   startAt(c, y, filmX + r * std::cos(phi), filmY + r * std::sin(phi), out);
 }
 
+void startSquareRange(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+                      ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
+  startEach<false>(MutationKind::Lens, ctx, chains, chainVertices, proposals, rays, range, startSquare);
+}
+
+void startDiskRange(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+                    ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
+  startEach<false>(MutationKind::LensDisk, ctx, chains, chainVertices, proposals, rays, range, startDisk);
+}
+
 float squareRatio(const MeasureContext&, const CurrentPath& y, const CurrentPath& z, float size) {
   const bool inside = std::abs(y.filmX - z.filmX) <= size + kFilmSlack && std::abs(y.filmY - z.filmY) <= size + kFilmSlack;
   return inside ? 1.0f : 0.0f;  // 1 / (2 size)^2 both ways
@@ -109,9 +120,9 @@ float diskRatio(const MeasureContext&, const CurrentPath& y, const CurrentPath& 
 
 }  // namespace
 
-extern const Mutation kLensSquareMutation{MutationKind::Lens, MutationKind::Lens, appliesToAnyChainPath, startSquare,
+extern const Mutation kLensSquareMutation{MutationKind::Lens, MutationKind::Lens, appliesToAnyChainPath, startSquareRange,
                                           lensTailStart, lensContribution, squareRatio};
-extern const Mutation kLensDiskMutation{MutationKind::LensDisk, MutationKind::Lens, appliesToAnyChainPath, startDisk,
+extern const Mutation kLensDiskMutation{MutationKind::LensDisk, MutationKind::Lens, appliesToAnyChainPath, startDiskRange,
                                         lensTailStart, lensContribution, diskRatio};
 
 }  // namespace erpt

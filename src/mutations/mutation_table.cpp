@@ -8,10 +8,14 @@ namespace erpt {
 
 extern const Mutation kLensSquareMutation, kLensDiskMutation, kCausticMutation, kCausticVeachMutation;
 
+namespace {
+// Constant-initialized (addresses only), so a lookup is one indexed load.
+const Mutation* const kUnits[kMutationKindCount] = {nullptr, &kLensSquareMutation, &kLensDiskMutation, &kCausticMutation,
+                                                    &kCausticVeachMutation};
+}  // namespace
+
 const Mutation& mutationOf(MutationKind kind) {
-  static const Mutation* const table[kMutationKindCount] = {nullptr, &kLensSquareMutation, &kLensDiskMutation,
-                                                            &kCausticMutation, &kCausticVeachMutation};
-  const Mutation* m = size_t(kind) < size_t(kMutationKindCount) ? table[size_t(kind)] : nullptr;
+  const Mutation* m = size_t(kind) < size_t(kMutationKindCount) ? kUnits[size_t(kind)] : nullptr;
   if (!m) throw std::logic_error("mutationOf: no mutation unit for this kind");
   return *m;
 }

@@ -9,6 +9,10 @@
 
 namespace erpt {
 
+namespace {
+uint8_t measureOf(MutationKind kind) { return uint8_t(mutationOf(kind).measure); }
+}  // namespace
+
 void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue& chainVertices,
                      ProposalQueue& proposals, const VertexQueue& proposalVertices, DepositQueue& deposits,
                      ErptCounters& counters, IndexRange range) {
@@ -29,18 +33,20 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
     float fzLum = 0;
     if (proposals.state[i] == kProposalComplete) {
       const Mutation& unit = mutationOf(kind);
-      const uint8_t measure = uint8_t(unit.measure);
+      const uint8_t measure = measureOf(kind);
       // With the fixed tail cached, f only reads the vertices up to where the tail starts.
       FixedTail tail;
       if (chains.tailKind[i] == measure) tail = FixedTail{chains.tailAt(i), true};
       const int needed = tail.known ? std::min(n, unit.tailStart(kinds, n) + 1) : n;
       for (int j = 0; j < needed; ++j) loadPathVertex(chainVertices, base + size_t(j), y[j]);
       for (int j = needed; j < n; ++j) y[j].kind = kinds[j];
-      // z: the regenerated vertices from the proposal, the rest from the chain (read from the
-      // queue again rather than copied from y, which was just written field by field).
-      for (int j = 0; j < needed; ++j)
-        loadPathVertex(j >= first && j <= last ? proposalVertices : chainVertices, base + size_t(j), z[j]);
-      for (int j = needed; j < n; ++j) z[j].kind = kinds[j];
+      // z: the regenerated vertices from the proposal, the rest as y's.
+      for (int j = 0; j < n; ++j) {
+        if (j >= first && j <= last)
+          loadPathVertex(proposalVertices, base + size_t(j), z[j]);
+        else
+          z[j] = y[j];
+      }
       fz = unit.contribution(ctx.measure, z, n, proposals.filmX[i], proposals.filmY[i], &tail);
       if (tail.known) {
         chains.tailSet(i, tail.value);
@@ -90,7 +96,7 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
       chains.filmY[i] = proposals.filmY[i];
       chains.colorSet(i, fz);
       chains.fLum[i] = fzLum;
-      chains.fKind[i] = uint8_t(mutationOf(kind).measure);
+      chains.fKind[i] = measureOf(kind);
       // A tail cached in another measure may include vertices this mutation moved.
       if (chains.tailKind[i] != chains.fKind[i]) chains.tailKind[i] = uint8_t(MutationKind::None);
     }

@@ -26,7 +26,7 @@ ErptWorld::ErptWorld(const std::string& sceneFile, int size, int spp, FilterKind
 }
 
 ErptStepContext ErptWorld::stepContext(MutationStrategy strategy) const {
-  ErptStepContext c{measure()};
+  ErptStepContext c{measure(), ErptSettings{}};
   c.settings.strategy = strategy;
   return c;
 }
