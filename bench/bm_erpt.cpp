@@ -196,7 +196,10 @@ void BM_ErptChainLoop(benchmark::State& state) {
   const int threads = int(state.range(0));
   ThreadPool pool(threads);
   const size_t slots = state.range(1) > 0 ? size_t(state.range(1)) : erptChainSlots(threads);
-  ErptChains::Config config{f.ctx, 100, 7, false, slots};
+  ErptStepContext ctx = f.ctx;
+  ctx.settings.chainLength = 100;
+  ctx.settings.directSamples = -1;  // every seed is ERPT's
+  ErptChains::Config config{ctx, 7, slots};
   config.depositEnergy = f.energy / (kSize * kSize * 16.0);
   uint64_t mutations = 0, rays = 0;
   double embree = 0, total = 0;

@@ -19,16 +19,13 @@ inline size_t erptChainSlots(int threads) { return size_t(1024) * size_t(threads
 
 class ErptChains {
  public:
+  // What the chain machine needs besides the ERPT settings (which come with the step
+  // context: chain length, flow rule, filters, chain cap, the direct-light split).
   struct Config {
     ErptStepContext step;
-    uint32_t chainLength = 100;
-    uint64_t seed = 0;
-    bool excludeDirect = false;  // leave paths of at most one bounce to the direct pass
-    size_t capacity = 1024;      // chain slots
-    double depositEnergy = 0;    // e_d (equal deposition)
-    uint32_t maxConsecutive = 0; // consecutive-sample filter (0: off)
-    bool tallyProposals = false; // proposed-mutations filter: count proposals per pixel
-    uint32_t maxChainsPerSeed = 4096;  // ErptSettings::maxChainsPerSeed
+    uint64_t seed = 0;         // the render's seed (chain and seed random streams)
+    size_t capacity = 1024;    // chain slots (erptChainSlots)
+    double depositEnergy = 0;  // e_d (equal deposition)
   };
   ErptChains(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times);
 
@@ -50,6 +47,7 @@ class ErptChains {
   const std::vector<uint32_t>& proposalTally() const { return tally_; }
 
  private:
+  const ErptSettings& settings() const { return config_.step.settings; }
   bool refill();  // true when every slot is busy afterwards
   void step();
   // Deposits `energy` (luminance) in the seed's colour at its film position, counted by `why`.

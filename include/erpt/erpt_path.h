@@ -14,7 +14,7 @@
 namespace erpt {
 
 // Longest path a chain can hold (eye and light included). Longer seeds keep their energy at
-// their own pixel (their chains never move) and are counted as unhandled.
+// their own film position (InPlaceReason kInPlaceTooLong).
 constexpr int kMaxChainVertices = 12;
 
 

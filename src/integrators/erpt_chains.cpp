@@ -19,8 +19,8 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 
 ErptChains::ErptChains(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times)
     : tracer_(tracer), config_(config), film_(film), stats_(stats), times_(times), q_(config.capacity) {
-  filters_.maxConsecutive = config.maxConsecutive;
-  if (config.tallyProposals) {
+  filters_.maxConsecutive = uint32_t(settings().maxConsecutive);
+  if (settings().pmFilterRadius >= 0) {
     tally_.assign(size_t(film.width()) * size_t(film.height()), 0);
     filters_.proposalTally = &tally_;
   }
@@ -71,7 +71,7 @@ void ErptChains::consume(const SeedStore& batch) {
   pending_.clear();
   pendingNext_ = 0;
   const double ed = config_.depositEnergy;
-  const double m = config_.chainLength;
+  const double m = uint32_t(settings().chainLength);
   const bool detailedBalance = config_.step.settings.flow == FlowRule::DetailedBalance;
   // First the chain counts (most seeds start none: e / (m e_d) is small), then, for the seeds
   // that start chains only, whether their chains could move (f in each mutation's measure,
@@ -82,7 +82,7 @@ void ErptChains::consume(const SeedStore& batch) {
   };
   std::vector<Started> started;
   for (size_t i = 0; i < batch.size(); ++i) {
-    if (!takesSeed(batch, i, config_.excludeDirect)) continue;
+    if (!takesSeed(batch, i, settings().directSamples > 0)) continue;
     const float e = luminance(batch.contribution(i));
     if (!(e > 0) || !std::isfinite(e)) continue;
     ++stats_.seeds;
@@ -97,9 +97,9 @@ void ErptChains::consume(const SeedStore& batch) {
     }
     uint32_t copies = detailedBalance ? 1 : chainsForSeed(e, m, ed, u);
     float energy = float(detailedBalance ? double(e) / m : ed);
-    if (copies > config_.maxChainsPerSeed) {
+    if (copies > uint32_t(settings().maxChainsPerSeed)) {
       // Same total energy (e in expectation became exactly e), fewer chains.
-      copies = config_.maxChainsPerSeed;
+      copies = uint32_t(settings().maxChainsPerSeed);
       energy = float(double(e) / (m * copies));
       ++stats_.cappedSeeds;
     }
@@ -148,7 +148,7 @@ bool ErptChains::refill() {
     }
     PendingSeed& p = pending_[pendingNext_];
     loadChainFromSeed(q_.chains, q_.chainVertices, slot, *batch_, p.seed,
-                      streamKey(config_.seed, kChainStream, chainCounter_++), config_.chainLength, p.energyPerStep);
+                      streamKey(config_.seed, kChainStream, chainCounter_++), uint32_t(settings().chainLength), p.energyPerStep);
     if (--p.copiesLeft == 0) ++pendingNext_;
   }
   times_.add("erpt refill", secondsSince(start));

@@ -75,11 +75,8 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
 
   RenderSetup setup(scene, s);
   FilmDensity density(setup.filter, s.width, s.height);
-  ErptChains::Config config{
-      ErptStepContext{MeasureContext{scene, setup.lights, setup.camera, density}, o},
-      uint32_t(o.chainLength), s.seed, o.directSamples > 0,
-erptChainSlots(setup.pool.threads()), es.depositEnergy, uint32_t(o.maxConsecutive),
-      o.pmFilterRadius >= 0, uint32_t(o.maxChainsPerSeed)};
+  ErptChains::Config config{ErptStepContext{MeasureContext{scene, setup.lights, setup.camera, density}, o}, s.seed,
+                            erptChainSlots(setup.pool.threads()), es.depositEnergy};
   ErptChains chains(setup.tracer, config, setup.film, es, stats.stages);
 
   RenderSettings main = s;

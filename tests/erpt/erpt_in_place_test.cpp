@@ -64,8 +64,11 @@ TEST(ErptInPlace, ChainCountsAreCappedWithTheSameTotalEnergy) {
   Film film(w.width, w.height);
   ErptStats stats;
   StageTimes times;
-  ErptChains::Config config{w.stepContext(MutationStrategy::Paper), 5, 3, false, 512, 1e-12};
-  config.maxChainsPerSeed = 3;
+  ErptStepContext ctx = w.stepContext(MutationStrategy::Paper);
+  ctx.settings.chainLength = 5;
+  ctx.settings.directSamples = -1;
+  ctx.settings.maxChainsPerSeed = 3;
+  ErptChains::Config config{ctx, 3, 512, 1e-12};
   ErptChains chains(*w.tracer, config, film, stats, times);
   chains.consume(w.seeds);
   chains.finish();
@@ -108,8 +111,10 @@ TEST(ErptInPlace, SeedWithZeroContributionIsDepositedInPlace) {
   Film film(w.width, w.height);
   ErptStats stats;
   StageTimes times;
-  ErptChains::Config config{w.stepContext(MutationStrategy::LensOnly), 10, 3, false, 64,
-                            double(luminance(one.contribution(0))) / 40};  // 4 chains if it could move
+  ErptStepContext ctx = w.stepContext(MutationStrategy::LensOnly);
+  ctx.settings.chainLength = 10;
+  ctx.settings.directSamples = -1;
+  ErptChains::Config config{ctx, 3, 64, double(luminance(one.contribution(0))) / 40};  // 4 chains if it could move
   ErptChains chains(*w.tracer, config, film, stats, times);
   chains.consume(one);
   chains.finish();

@@ -121,7 +121,10 @@ TEST(ErptStages, DepositsSumToChainsTimesLengthTimesDepositEnergy) {
   Film film(w.width, w.height);
   ErptStats stats;
   StageTimes times;
-  ErptChains::Config config{w.stepContext(MutationStrategy::Paper), 7, 3, false, 512, 0.02};
+  ErptStepContext ctx = w.stepContext(MutationStrategy::Paper);
+  ctx.settings.chainLength = 7;
+  ctx.settings.directSamples = -1;  // every seed is ERPT's
+  ErptChains::Config config{ctx, 3, 512, 0.02};
   ErptChains chains(*w.tracer, config, film, stats, times);
   chains.consume(w.seeds);
   chains.finish();
