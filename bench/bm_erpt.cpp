@@ -202,7 +202,7 @@ void BM_ErptChainLoop(benchmark::State& state) {
   ErptChains::Config config{ctx, 7, slots};
   config.depositEnergy = f.energy / (kSize * kSize * 16.0);
   uint64_t mutations = 0, rays = 0;
-  double embree = 0, total = 0;
+  double embree = 0, serial = 0, total = 0;
   for (auto _ : state) {
     Film film(kSize, kSize);
     ErptStats stats;
@@ -215,11 +215,14 @@ void BM_ErptChainLoop(benchmark::State& state) {
     for (const auto& [name, seconds] : times.all()) {
       total += seconds;
       if (name == "erpt intersect" || name == "erpt connect") embree += seconds;
+      // The single-threaded parts (film deposits in slot order, refilling slots from seeds).
+      if (name == "erpt deposit" || name == "erpt refill") serial += seconds;
     }
   }
   state.counters["mutations/s"] = benchmark::Counter(double(mutations), benchmark::Counter::kIsRate);
   state.counters["rays/s"] = benchmark::Counter(double(rays), benchmark::Counter::kIsRate);
   state.counters["embree_share"] = total > 0 ? embree / total : 0;
+  state.counters["serial_share"] = total > 0 ? serial / total : 0;
 }
 
 // One whole chain step (ChainStep::run: mutate, intersect, trace, connect, accept) on the
