@@ -8,10 +8,11 @@
 // uniform square / disk (symmetric), ERPT's caustic angle (symmetric), and Veach's uniform
 // angle, T(y -> z) = 1 / (2 pi theta_max(y) sin theta) with theta_max from PMC-ER eq. 6.
 // Scenes: the Cornell box (no specular vertices) and the default scene (paths through its glass
-// and mirror spheres). Proposals whose walk perturbed a direction on the way (lens through D
+// and mirror spheres; those cases require a number of moves that regenerate a specular vertex). Proposals whose walk perturbed a direction on the way (lens through D
 // then S) are left out: their reverse is not determined by the film position alone.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -43,13 +44,19 @@ double thetaMaxOf(const ErptWorld& w, const PathVertex* p, int s, float pixels) 
   return std::atan(double(pixels) / double(w.camera->pixelsPerPlaneUnit())) * eye / toSource;
 }
 
-void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, size_t wanted) {
+// `wantedThroughSpecular`: how many of the reverse moves must regenerate a specular vertex
+// (a walk through the glass or mirror sphere).
+void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, size_t wanted,
+                          size_t wantedThroughSpecular = 0) {
   ErptWorld w(sceneFile, 48, 4, FilterKind::Tent);
   ErptStepContext ctx = w.stepContext(c.strategy);
   ctx.settings.lensShape = c.shape;
   ctx.settings.causticAngle = c.angle;
   ChainQueues forward(4096);
-  const size_t loaded = forward.loadSeeds(w, 10, 1.0f, 4);
+  // Seeds from all over the image (the spheres fill its lower half); an odd stride, so that
+  // seeds recorded in pairs (a next-event and a BSDF-sampled one) are both taken.
+  const size_t loaded = forward.loadSeeds(w, 10, 1.0f, 4, std::max<size_t>(1, w.seeds.size() / 4096) | 1);
+  ASSERT_GT(loaded, 0u);
   forward.propose(w, ctx);
   const ChainQueue y = forward.chains;
   const VertexQueue yVertices = forward.chainVertices;
@@ -64,9 +71,11 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
     const ProposalQueue& p = forward.proposals;
     if (p.mutation[i] != uint8_t(c.kind) || p.state[i] != kProposalComplete || !(p.acceptance[i] > 0)) continue;
     const int n = y.vertexCount[i];
+    // Non-specular vertices the walk passes before its last one (where it connects).
     bool perturbedOnTheWay = false;
-    for (int j = p.regenFirst[i]; j < p.regenLast[i]; ++j)
-      perturbedOnTheWay |= kindAt(y.signature[i], j) == kNonSpecularVertex;
+    const int walkFirst = p.walk[i] > 0 ? p.regenFirst[i] : p.regenFirst[i] + 1;
+    const int walkLast = p.walk[i] > 0 ? p.regenLast[i] - 1 : p.regenLast[i];
+    for (int j = walkFirst; j <= walkLast; ++j) perturbedOnTheWay |= kindAt(y.signature[i], j) == kNonSpecularVertex;
     if (perturbedOnTheWay) continue;
     const size_t k = from.size();
     from.push_back(i);
@@ -114,8 +123,8 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
                   backCounters, all);
 
   PathVertex py[kMaxChainVertices], pz[kMaxChainVertices];
-  std::vector<double> errors;
-  size_t invalid = 0;
+  std::vector<double> errors, distances;
+  size_t invalid = 0, throughSpecular = 0;
   for (size_t k = 0; k < from.size(); ++k) {
     const size_t i = from[k];
     if (back.proposals.state[k] != kProposalComplete) {
@@ -124,11 +133,15 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
     }
     const int n = loadChainPath(y, yVertices, i, py);
     loadChainPath(zChains, zVertices, k, pz);
-    // The walk back reproduces y's regenerated vertices.
-    for (int j = forward.proposals.regenFirst[i]; j <= forward.proposals.regenLast[i]; ++j) {
-      const PathVertex back1 = loadPathVertex(back.proposalVertices, k * kMaxChainVertices + size_t(j));
-      EXPECT_LT(length(back1.p - py[j].p), 1e-3f) << c.name << " slot " << i << " vertex " << j;
-    }
+    // The walk back reproduces y's regenerated vertices (up to the rounding of re-tracing,
+    // which a specular chain amplifies: checked on quantiles below).
+    for (int j = forward.proposals.regenFirst[i]; j <= forward.proposals.regenLast[i]; ++j)
+      distances.push_back(double(length(loadPathVertex(back.proposalVertices, k * kMaxChainVertices + size_t(j)).p - py[j].p)));
+    for (int j = forward.proposals.regenFirst[i]; j <= forward.proposals.regenLast[i]; ++j)
+      if (py[j].kind == kSpecularVertex) {
+        ++throughSpecular;
+        break;
+      }
     const double fy = luminance(contributionFor(c.kind, mc, py, n, y.filmX[i], y.filmY[i]));
     const double fz = luminance(contributionFor(c.kind, mc, pz, n, zChains.filmX[k], zChains.filmY[k]));
     double tYZ = 1, tZY = 1;  // symmetric kinds: the same constant both ways
@@ -143,8 +156,15 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
   std::sort(errors.begin(), errors.end());
   ASSERT_FALSE(errors.empty());
   const double median = errors[errors.size() / 2], p90 = errors[errors.size() * 9 / 10];
-  std::printf("%s: %zu reverse moves, %zu invalid; |flow ratio - 1| median %.2e, 90%% %.2e, worst %.2e\n", c.name,
-              from.size(), invalid, median, p90, errors.back());
+  std::printf("%s: %zu reverse moves (%zu through specular vertices), %zu invalid; |flow ratio - 1| median %.2e, "
+              "90%% %.2e, worst %.2e\n",
+              c.name, from.size(), throughSpecular, invalid, median, p90, errors.back());
+  EXPECT_GE(throughSpecular, wantedThroughSpecular) << c.name;
+  std::sort(distances.begin(), distances.end());
+  const double d50 = distances[distances.size() / 2], d99 = distances[distances.size() * 99 / 100];
+  std::printf("  walk back to y: vertex distance median %.2e, 99%% %.2e, worst %.2e\n", d50, d99, distances.back());
+  EXPECT_LT(d50, 1e-4) << c.name;  // the ray origins are offset ~4e-5 off the surface
+  EXPECT_LT(d99, 1e-3) << c.name;
   // The reverse of a valid move is valid (up to re-tracing at grazing silhouettes), and the
   // flows agree within the float noise of re-tracing y (1%: grazing vertices make f sensitive
   // to it); a wrong T ratio (Veach: theta_max(y) / theta_max(z) inverted or dropped) is off by
@@ -168,12 +188,14 @@ std::string defaultScene() { return test::sourceDir() + "/scenes/default/scene.x
 
 TEST(ErptDetailedBalance, LensSquareCornellBox) { checkDetailedBalance(cornell(), kLensSquare, 300); }
 TEST(ErptDetailedBalance, LensDiskCornellBox) { checkDetailedBalance(cornell(), kLensDisk, 300); }
-TEST(ErptDetailedBalance, LensSquareThroughGlassAndMirror) { checkDetailedBalance(defaultScene(), kLensSquare, 300); }
-TEST(ErptDetailedBalance, LensDiskThroughGlassAndMirror) { checkDetailedBalance(defaultScene(), kLensDisk, 300); }
+TEST(ErptDetailedBalance, LensSquareThroughGlassAndMirror) { checkDetailedBalance(defaultScene(), kLensSquare, 300, 100); }
+TEST(ErptDetailedBalance, LensDiskThroughGlassAndMirror) { checkDetailedBalance(defaultScene(), kLensDisk, 300, 100); }
 TEST(ErptDetailedBalance, CausticErptCornellBox) { checkDetailedBalance(cornell(), kCausticErpt, 300); }
 TEST(ErptDetailedBalance, CausticVeachCornellBox) { checkDetailedBalance(cornell(), kCausticVeach, 300); }
-TEST(ErptDetailedBalance, CausticErptThroughGlassAndMirror) { checkDetailedBalance(defaultScene(), kCausticErpt, 100); }
-TEST(ErptDetailedBalance, CausticVeachThroughGlassAndMirror) { checkDetailedBalance(defaultScene(), kCausticVeach, 100); }
+// Caustic paths through the spheres are rare among the seeds (bright, so they start many
+// chains in a render): about 200 of the ~3,000 reverse moves here.
+TEST(ErptDetailedBalance, CausticErptThroughGlassAndMirror) { checkDetailedBalance(defaultScene(), kCausticErpt, 300, 100); }
+TEST(ErptDetailedBalance, CausticVeachThroughGlassAndMirror) { checkDetailedBalance(defaultScene(), kCausticVeach, 300, 100); }
 
 }  // namespace
 }  // namespace erpt

@@ -37,9 +37,10 @@ int ErptWorld::seedPath(size_t seed, PathVertex* out) const {
   return n;
 }
 
-size_t ChainQueues::loadSeeds(const ErptWorld& w, uint32_t chainLength, float energyPerStep, uint64_t keySeed) {
+size_t ChainQueues::loadSeeds(const ErptWorld& w, uint32_t chainLength, float energyPerStep, uint64_t keySeed,
+                              size_t stride) {
   size_t slot = 0;
-  for (size_t s = 0; s < w.seeds.size() && slot < chains.size(); ++s) {
+  for (size_t s = 0; s < w.seeds.size() && slot < chains.size(); s += stride) {
     if (w.seeds.seeds.vertexCount[s] > uint32_t(kMaxChainVertices) || !(luminance(w.seeds.contribution(s)) > 0))
       continue;
     loadChainFromSeed(chains, chainVertices, slot++, w.seeds, s, streamKey(keySeed, s, 0), chainLength, energyPerStep);

@@ -37,7 +37,9 @@ struct ChainQueues : ErptQueues {
   // Starts chains in slots 0, 1, ... at the world's seeds in order, skipping seeds too long
   // for a chain or without energy, until the queue is full; chain keys streamKey(keySeed,
   // seed, 0). Returns how many were loaded.
-  size_t loadSeeds(const ErptWorld& world, uint32_t chainLength, float energyPerStep, uint64_t keySeed);
+  // `stride` > 1 takes every stride-th seed (spreading the chains over the image).
+  size_t loadSeeds(const ErptWorld& world, uint32_t chainLength, float energyPerStep, uint64_t keySeed,
+                   size_t stride = 1);
   // ChainStep::propose: mutate -> (intersect -> trace)* -> connect; stops before accept.
   void propose(const ErptWorld& world, const ErptStepContext& ctx);
 };
