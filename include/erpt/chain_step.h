@@ -24,6 +24,9 @@ struct ChainStep {
 
   // mutate -> (intersect -> trace)* -> connect; returns the rays traced.
   uint64_t propose(ErptQueues& q) const;
+  // (intersect -> trace)* -> connect for proposals already started (their first rays set):
+  // propose() after mutate, and tests that aim a proposal by hand (a reverse move).
+  uint64_t traceAndConnect(ErptQueues& q) const;
   // accept (and the step's deposit records).
   void accept(ErptQueues& q, ErptCounters& counters) const;
   uint64_t run(ErptQueues& q, ErptCounters& counters) const {

@@ -38,11 +38,14 @@ struct ProposalStart {
 };
 
 // Everything a unit reads about the chain's current path y.
+// The vertices and kinds are filled only for units that read them (startEach's
+// kReadsVertices); the signature always.
 struct CurrentPath {
   const PathVertex* vertices;
   const uint8_t* kinds;
   int n;
   float filmX, filmY;
+  uint64_t signature = 0;
 };
 
 struct ErptStepContext;

@@ -14,13 +14,24 @@
 
 namespace erpt {
 
-int lensConnectionTarget(const uint8_t* kinds, int n) {
+namespace {
+
+// The first non-specular vertex j not followed by a specular one connects to j + 1.
+template <class KindOf>
+int connectionTarget(KindOf kindOf, int n) {
   for (int j = 1; j < n; ++j) {
-    if (kinds[j] == kLightVertex || kinds[j] == kEnvironmentVertex) return -1;  // reached by tracing
-    if (kinds[j] == kSpecularVertex || (j + 1 < n && kinds[j + 1] == kSpecularVertex)) continue;
+    const uint8_t k = kindOf(j);
+    if (k == kLightVertex || k == kEnvironmentVertex) return -1;  // reached by tracing
+    if (k == kSpecularVertex || (j + 1 < n && kindOf(j + 1) == kSpecularVertex)) continue;
     return j + 1;
   }
   return -1;
+}
+
+}  // namespace
+
+int lensConnectionTarget(const uint8_t* kinds, int n) {
+  return connectionTarget([kinds](int j) { return kinds[j]; }, n);
 }
 
 Color lensContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY,
@@ -82,7 +93,9 @@ void startAt(const MeasureContext& c, const CurrentPath& y, float fx, float fy, 
   out.cursor = 1;
   out.walk = +1;
   out.regenFirst = 1;
-  out.connectTo = lensConnectionTarget(y.kinds, y.n);
+  // From the packed signature: lens starts do not unpack the path.
+  const uint64_t signature = y.signature;
+  out.connectTo = connectionTarget([signature](int j) { return kindAt(signature, j); }, y.n);
   out.regenLast = out.connectTo > 0 ? out.connectTo - 1 : y.n - 1;
 }
 

@@ -20,15 +20,17 @@ void startEach(MutationKind kind, const ErptStepContext& ctx, const ChainQueue& 
   for (size_t i = range.begin; i < range.end; ++i) {
     if (proposals.mutation[i] != uint8_t(kind) || proposals.state[i] != kProposalWalking) continue;
     const int n = chains.vertexCount[i];
-    unpackSignature(chains.signature[i], n, kinds);
-    if (kReadsVertices) loadChainPath(chains, chainVertices, i, y);
+    if (kReadsVertices) {
+      unpackSignature(chains.signature[i], n, kinds);
+      loadChainPath(chains, chainVertices, i, y);
+    }
     const float filmX = chains.filmX[i], filmY = chains.filmY[i], size = proposals.perturbSize[i];
     const uint64_t key = chains.key[i];
     const uint32_t step = chains.step[i];
     ProposalStart start;
     start.filmX = filmX;
     start.filmY = filmY;
-    startOne(ctx.measure, CurrentPath{y, kinds, n, filmX, filmY}, filmX, filmY, size,
+    startOne(ctx.measure, CurrentPath{y, kinds, n, filmX, filmY, chains.signature[i]}, filmX, filmY, size,
              uniformFloat(key, stepDim(step, kDimStart1)), uniformFloat(key, stepDim(step, kDimStart2)), start);
     proposals.filmX[i] = start.filmX;
     proposals.filmY[i] = start.filmY;

@@ -17,13 +17,17 @@ size_t raysInFlight(const RayQueue& rays, IndexRange r) {
 }  // namespace
 
 uint64_t ChainStep::propose(ErptQueues& q) const {
-  const size_t c = q.chains.size();
-  std::atomic<uint64_t> rays{0};
-  std::atomic<size_t> walking{0};
-  forEachRange("erpt mutate", c, grain, [&](IndexRange r) {
+  forEachRange("erpt mutate", q.chains.size(), grain, [&](IndexRange r) {
     stageErptMutate(ctx, q.chains, q.chainVertices, q.proposals, q.rays, r);
     for (size_t i = r.begin; i < r.end; ++i) disableRay(q.shadowRays, i);
   }, times);
+  return traceAndConnect(q);
+}
+
+uint64_t ChainStep::traceAndConnect(ErptQueues& q) const {
+  const size_t c = q.chains.size();
+  std::atomic<uint64_t> rays{0};
+  std::atomic<size_t> walking{0};
   // A walk bounces at most once per vertex of the longest path.
   for (int pass = 0; pass < kMaxChainVertices; ++pass) {
     forEachRange("erpt intersect", c, grain, [&](IndexRange r) {

@@ -107,20 +107,18 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
     }
   }
   ASSERT_GE(from.size(), wanted) << c.name;
-  const IndexRange all{0, from.size()};
-  for (size_t k = 0; k < from.size(); ++k) disableRay(back.shadowRays, k);
-  for (int pass = 0; pass < kMaxChainVertices; ++pass) {
-    w.tracer->intersect(back.rays, back.hits, all, RayCoherence::Incoherent);
-    if (stageErptTrace(ctx, back.chains, back.chainVertices, back.proposals, back.proposalVertices, back.rays,
-                       back.hits, back.shadowRays, all) == 0)
-      break;
+  // The unused slots (free chains) take no part.
+  for (size_t k = from.size(); k < back.chains.size(); ++k) {
+    back.proposals.state[k] = kProposalRejected;
+    disableRay(back.rays, k);
   }
-  stageErptConnect(*w.tracer, back.shadowRays, back.proposals, all);
+  for (size_t k = 0; k < back.chains.size(); ++k) disableRay(back.shadowRays, k);
+  const ChainStep step{*w.tracer, ctx};
+  step.traceAndConnect(back);
   const ChainQueue zChains = back.chains;
   const VertexQueue zVertices = back.chainVertices;
   ErptCounters backCounters;
-  stageErptAccept(ctx, back.chains, back.chainVertices, back.proposals, back.proposalVertices, back.deposits,
-                  backCounters, all);
+  step.accept(back, backCounters);
 
   PathVertex py[kMaxChainVertices], pz[kMaxChainVertices];
   std::vector<double> errors, distances;
