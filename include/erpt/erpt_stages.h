@@ -63,6 +63,13 @@ int loadChainPath(const ChainQueue& chains, const VertexQueue& vertices, size_t 
 void loadChainFromSeed(ChainQueue& chains, VertexQueue& chainVertices, size_t slot, const SeedStore& store,
                        size_t seed, uint64_t key, uint32_t chainLength, float energyPerStep);
 
+// Marks slot i's proposal rejected for `why` and disables its ray (mutate and trace stages).
+inline void rejectProposal(ProposalQueue& p, RayQueue& rays, size_t i, RejectReason why) {
+  p.state[i] = kProposalRejected;
+  p.reason[i] = why;
+  disableRay(rays, i);
+}
+
 // Chooses each active chain's mutation and starts it: the first ray of the proposal in `rays`
 // (lens: the eye ray through the perturbed film position; caustic: the perturbed ray leaving
 // the source vertex). Inactive chains and impossible proposals get a disabled ray.

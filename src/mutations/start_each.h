@@ -35,9 +35,7 @@ void startEach(MutationKind kind, const ErptStepContext& ctx, const ChainQueue& 
     proposals.filmX[i] = start.filmX;
     proposals.filmY[i] = start.filmY;
     if (start.reject != kRejectNone) {
-      proposals.state[i] = kProposalRejected;
-      proposals.reason[i] = start.reject;
-      disableRay(rays, i);
+      rejectProposal(proposals, rays, i, start.reject);
       continue;
     }
     proposals.cursor[i] = int8_t(start.cursor);

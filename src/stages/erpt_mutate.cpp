@@ -8,16 +8,6 @@
 
 namespace erpt {
 
-namespace {
-
-void reject(ProposalQueue& p, RayQueue& rays, size_t i, RejectReason why) {
-  p.state[i] = kProposalRejected;
-  p.reason[i] = why;
-  disableRay(rays, i);
-}
-
-}  // namespace
-
 void stageErptMutate(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                      ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
   // Pass 1: every slot's mutation (the strategy picks the family from the path's signature,
@@ -32,7 +22,7 @@ void stageErptMutate(const ErptStepContext& ctx, const ChainQueue& chains, const
     proposals.regenLast[i] = 0;
     proposals.acceptance[i] = 0;
     if (chains.stepsLeft[i] == 0) {
-      reject(proposals, rays, i, kRejectNone);
+      rejectProposal(proposals, rays, i, kRejectNone);
       continue;
     }
     const int n = chains.vertexCount[i];
@@ -40,7 +30,7 @@ void stageErptMutate(const ErptStepContext& ctx, const ChainQueue& chains, const
     const MutationKind family = chooseMutation(ctx.settings.strategy, kinds, n,
                                                uniformFloat(chains.key[i], stepDim(chains.step[i], kDimStrategy)));
     if (family == MutationKind::None) {
-      reject(proposals, rays, i, kRejectNoMutation);
+      rejectProposal(proposals, rays, i, kRejectNoMutation);
       continue;
     }
     const MutationKind kind = family == MutationKind::Lens ? ctx.lensKind() : ctx.causticKind();

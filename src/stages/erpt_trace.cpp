@@ -15,12 +15,6 @@ namespace erpt {
 
 namespace {
 
-void reject(ProposalQueue& p, RayQueue& rays, size_t i, RejectReason why) {
-  p.state[i] = kProposalRejected;
-  p.reason[i] = why;
-  disableRay(rays, i);
-}
-
 void complete(ProposalQueue& p, RayQueue& rays, size_t i) {
   p.state[i] = kProposalComplete;
   disableRay(rays, i);
@@ -65,7 +59,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
     PathVertex z;
     if (hits.geomID[i] == kNoHit) {
       if (!tracesToLight || expected.kind != kEnvironmentVertex) {
-        reject(proposals, rays, i, kRejectMissed);
+        rejectProposal(proposals, rays, i, kRejectMissed);
         continue;
       }
       z.p = origin + dir * 1e6f;
@@ -89,7 +83,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
 
     if (expected.kind == kLightVertex) {
       if (!tracesToLight || isBlack(mc.lights.emitted(sp.triangle, -dir))) {
-        reject(proposals, rays, i, kRejectKindChanged);
+        rejectProposal(proposals, rays, i, kRejectKindChanged);
         continue;
       }
       storePathVertex(proposalVertices, row, z);
@@ -102,7 +96,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
                              : expected.kind == kNonSpecularVertex ? !m.isPureSpecular()
                                                                    : false;
     if (!kindMatches) {
-      reject(proposals, rays, i, kRejectKindChanged);
+      rejectProposal(proposals, rays, i, kRejectKindChanged);
       continue;
     }
     storePathVertex(proposalVertices, row, z);
@@ -111,7 +105,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
       // Follow the same lobe (reflection or transmission) as the current path.
       Vec3 wo;
       if (last || !specularDirection(m, sp.shading.toLocal(-dir), reflectsAt(window, 1), wo)) {
-        reject(proposals, rays, i, kRejectKindChanged);
+        rejectProposal(proposals, rays, i, kRejectKindChanged);
         continue;
       }
       const Vec3 next = sp.shading.toWorld(wo);
@@ -139,7 +133,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
       // Connect to the eye (rule 5): the film position is where z projects.
       float fx, fy;
       if (!mc.camera.project(z.p, fx, fy) || !(mc.film.density(fx, fy) > 0)) {
-        reject(proposals, rays, i, kRejectOffFilm);
+        rejectProposal(proposals, rays, i, kRejectOffFilm);
         continue;
       }
       proposals.filmX[i] = fx;
@@ -153,7 +147,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
       const Vec3 d = environment ? -target.ns : normalize(target.p - z.p);
       setConnection(shadowRays, i, z, environment ? Vec3(0.0f) : offsetOrigin(target.p, target.ng, -d), environment, d);
     } else {
-      reject(proposals, rays, i, kRejectKindChanged);  // the walk should have reached the light
+      rejectProposal(proposals, rays, i, kRejectKindChanged);  // the walk should have reached the light
       continue;
     }
     proposals.state[i] = kProposalConnecting;
