@@ -123,12 +123,12 @@ void startVeach(const MeasureContext& c, const CurrentPath& y, float, float, flo
 
 void startErptRange(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                     ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
-  startEach<true>(MutationKind::Caustic, ctx, chains, chainVertices, proposals, rays, range, startErpt);
+  startEach<true, startErpt>(MutationKind::Caustic, ctx, chains, chainVertices, proposals, rays, range);
 }
 
 void startVeachRange(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                      ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
-  startEach<true>(MutationKind::CausticVeach, ctx, chains, chainVertices, proposals, rays, range, startVeach);
+  startEach<true, startVeach>(MutationKind::CausticVeach, ctx, chains, chainVertices, proposals, rays, range);
 }
 
 float erptRatio(const MeasureContext&, const CurrentPath&, const CurrentPath&, float) {

@@ -113,12 +113,12 @@ void startDisk(const MeasureContext& c, const CurrentPath& y, float filmX, float
 
 void startSquareRange(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                       ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
-  startEach<false>(MutationKind::Lens, ctx, chains, chainVertices, proposals, rays, range, startSquare);
+  startEach<false, startSquare>(MutationKind::Lens, ctx, chains, chainVertices, proposals, rays, range);
 }
 
 void startDiskRange(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                     ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
-  startEach<false>(MutationKind::LensDisk, ctx, chains, chainVertices, proposals, rays, range, startDisk);
+  startEach<false, startDisk>(MutationKind::LensDisk, ctx, chains, chainVertices, proposals, rays, range);
 }
 
 float squareRatio(const MeasureContext&, const CurrentPath& y, const CurrentPath& z, float size) {

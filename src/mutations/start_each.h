@@ -1,6 +1,6 @@
 // The loop every mutation unit's startRange runs: over the slots of a range whose proposal
 // chose this unit, read the chain's path (its vertices only when the unit reads them), call
-// the unit's start for one proposal (inlined: a template parameter, not a pointer), and write
+// the unit's start for one proposal (inlined: a template argument, not a pointer), and write
 // the proposal's columns and first ray. One loop per unit keeps the per-proposal math inline
 // and the dispatch on the kind in the mutate stage's loop over units.
 #pragma once
@@ -12,9 +12,11 @@
 
 namespace erpt {
 
-template <bool kReadsVertices, class StartOne>
+// StartOne is a function (a template argument, so the call is direct and can be inlined; a
+// function-pointer argument stays an indirect call per proposal).
+template <bool kReadsVertices, auto StartOne>
 void startEach(MutationKind kind, const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
-               ProposalQueue& proposals, RayQueue& rays, IndexRange range, StartOne startOne) {
+               ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
   uint8_t kinds[kMaxChainVertices];
   PathVertex y[kMaxChainVertices];
   for (size_t i = range.begin; i < range.end; ++i) {
@@ -30,7 +32,7 @@ void startEach(MutationKind kind, const ErptStepContext& ctx, const ChainQueue& 
     ProposalStart start;
     start.filmX = filmX;
     start.filmY = filmY;
-    startOne(ctx.measure, CurrentPath{y, kinds, n, filmX, filmY, chains.signature[i]}, filmX, filmY, size,
+    StartOne(ctx.measure, CurrentPath{y, kinds, n, filmX, filmY, chains.signature[i]}, filmX, filmY, size,
              uniformFloat(key, stepDim(step, kDimStart1)), uniformFloat(key, stepDim(step, kDimStart2)), start);
     proposals.filmX[i] = start.filmX;
     proposals.filmY[i] = start.filmY;
