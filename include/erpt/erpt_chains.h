@@ -52,11 +52,11 @@ class ErptChains {
   void step();
   // Deposits `energy` (luminance) in the seed's colour at its film position, counted by `why`.
   void depositInPlace(const SeedStore& store, size_t seed, double energy, InPlaceReason why);
-  // Why seed `i` of `store` cannot start moving chains (kInPlaceReasonCount: it can): from
-  // its signature alone (too long, no mutation applies), and also from f in each mutation's
-  // measure.
+  // Why seed `i` cannot start moving chains judging by its signature (too long, no mutation
+  // applies; kInPlaceReasonCount: it can), and whether its f is zero or not finite in a
+  // mutation's measure the strategy may pick (checked only for seeds that start chains).
   InPlaceReason signatureReason(const SeedStore& store, size_t i) const;
-  InPlaceReason inPlaceReason(const SeedStore& store, size_t i) const;
+  bool zeroContribution(const SeedStore& store, size_t i) const;
   bool anyActive() const;
 
   const Tracer& tracer_;
@@ -73,7 +73,7 @@ class ErptChains {
   };
   const SeedStore* batch_ = nullptr;
   std::vector<PendingSeed> pending_;
-  std::vector<uint8_t> inPlace_;  // per seed starting chains: InPlaceReason, or kInPlaceReasonCount
+  std::vector<uint8_t> zeroF_;  // per seed starting chains: zeroContribution()
   size_t pendingNext_ = 0;
   uint64_t seedCounter_ = 0, chainCounter_ = 0;
   double deposited_ = 0, inPlaceDeposited_ = 0;

@@ -36,34 +36,32 @@ InPlaceReason ErptChains::signatureReason(const SeedStore& store, size_t i) cons
   if (n > uint32_t(kMaxChainVertices)) return kInPlaceTooLong;
   uint8_t kinds[kMaxChainVertices];
   for (uint32_t j = 0; j < n; ++j) kinds[j] = store.vertices.kind[store.seeds.vertexBegin[i] + j];
-  const bool none = chooseMutation(config_.step.settings.strategy, kinds, int(n), 0.0f) == MutationKind::None &&
-                    chooseMutation(config_.step.settings.strategy, kinds, int(n), 0.999f) == MutationKind::None;
+  // Both choices of the `Mixed` coin.
+  const bool none = chooseMutation(settings().strategy, kinds, int(n), 0.0f) == MutationKind::None &&
+                    chooseMutation(settings().strategy, kinds, int(n), 0.999f) == MutationKind::None;
   return none ? kInPlaceNoMutation : kInPlaceReasonCount;
 }
 
-InPlaceReason ErptChains::inPlaceReason(const SeedStore& store, size_t i) const {
-  const uint32_t n = store.seeds.vertexCount[i];
-  if (n > uint32_t(kMaxChainVertices)) return kInPlaceTooLong;
+bool ErptChains::zeroContribution(const SeedStore& store, size_t i) const {
+  const uint32_t n = store.seeds.vertexCount[i];  // at most kMaxChainVertices (signatureReason)
   PathVertex path[kMaxChainVertices];
   uint8_t kinds[kMaxChainVertices];
   for (uint32_t j = 0; j < n; ++j) {
-    path[j] = loadPathVertex(store.vertices, store.seeds.vertexBegin[i] + j);
+    loadPathVertex(store.vertices, store.seeds.vertexBegin[i] + j, path[j]);
     kinds[j] = path[j].kind;
   }
   // Every mutation the strategy may pick for this signature (the choice depends on the
   // signature only, which mutations preserve) must see a path of positive, finite f: a chain
   // standing on a zero of its target would accept anything.
-  const MutationKind choices[] = {chooseMutation(config_.step.settings.strategy, kinds, int(n), 0.0f),
-                                  chooseMutation(config_.step.settings.strategy, kinds, int(n), 0.999f)};
-  if (choices[0] == MutationKind::None && choices[1] == MutationKind::None) return kInPlaceNoMutation;
-  for (MutationKind family : choices) {
+  for (float u : {0.0f, 0.999f}) {
+    const MutationKind family = chooseMutation(settings().strategy, kinds, int(n), u);
     if (family == MutationKind::None) continue;
     const MutationKind kind = family == MutationKind::Lens ? config_.step.lensKind() : config_.step.causticKind();
     const float f = luminance(contributionFor(kind, config_.step.measure, path, int(n), store.seeds.filmX[i],
                                               store.seeds.filmY[i]));
-    if (!(f > 0) || !std::isfinite(f)) return kInPlaceZeroContribution;
+    if (!(f > 0) || !std::isfinite(f)) return true;
   }
-  return kInPlaceReasonCount;
+  return false;
 }
 
 void ErptChains::consume(const SeedStore& batch) {
@@ -71,7 +69,7 @@ void ErptChains::consume(const SeedStore& batch) {
   pending_.clear();
   pendingNext_ = 0;
   const double ed = config_.depositEnergy;
-  const double m = uint32_t(settings().chainLength);
+  const double m = double(settings().chainLength);
   const bool detailedBalance = config_.step.settings.flow == FlowRule::DetailedBalance;
   // First the chain counts (most seeds start none: e / (m e_d) is small), then, for the seeds
   // that start chains only, whether their chains could move (f in each mutation's measure,
@@ -105,15 +103,15 @@ void ErptChains::consume(const SeedStore& batch) {
     }
     if (copies > 0) started.push_back(Started{uint32_t(i), copies, energy});
   }
-  inPlace_.assign(started.size(), uint8_t(kInPlaceReasonCount));
+  zeroF_.assign(started.size(), 0);
   forEachRange("erpt seed check", started.size(), 64, [&](IndexRange r) {
-    for (size_t k = r.begin; k < r.end; ++k) inPlace_[k] = uint8_t(inPlaceReason(batch, started[k].seed));
+    for (size_t k = r.begin; k < r.end; ++k) zeroF_[k] = zeroContribution(batch, started[k].seed);
   }, &times_);
   for (size_t k = 0; k < started.size(); ++k) {
     const Started& st = started[k];
-    if (inPlace_[k] != kInPlaceReasonCount) {
+    if (zeroF_[k]) {
       // What its chains would have deposited, at the seed's own film position.
-      depositInPlace(batch, st.seed, double(st.energy) * m * st.copies, InPlaceReason(inPlace_[k]));
+      depositInPlace(batch, st.seed, double(st.energy) * m * st.copies, kInPlaceZeroContribution);
       continue;
     }
     stats_.chains += st.copies;
