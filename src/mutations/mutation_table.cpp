@@ -22,7 +22,9 @@ const Mutation& mutationOf(MutationKind kind) {
 
 MutationKind chooseMutation(MutationStrategy s, const uint8_t* kinds, int n, float u) {
   if (n < 2 || n > kMaxChainVertices) return MutationKind::None;
-  const bool caustic = causticSource(kinds, n) > 0;
+  // The units' own suitability (both caustic units apply to the same paths).
+  if (!mutationOf(MutationKind::Lens).applies(kinds, n)) return MutationKind::None;
+  const bool caustic = mutationOf(MutationKind::Caustic).applies(kinds, n);
   switch (s) {
     case MutationStrategy::Paper: return isCausticPath(kinds, n) ? MutationKind::Caustic : MutationKind::Lens;
     case MutationStrategy::Mixed: return caustic && u < 0.5f ? MutationKind::Caustic : MutationKind::Lens;
