@@ -21,6 +21,7 @@ struct ChainStep {
   const ErptStepContext& ctx;
   StageTimes* times = nullptr;  // per-stage seconds, when set
   size_t grain = 256;           // slots per range
+  const MutationChooser* chooser = nullptr;  // the mutate stage's choice; null: ERPT's (erptChooser)
 
   // mutate -> (intersect -> trace)* -> connect; returns the rays traced.
   uint64_t propose(ErptQueues& q) const;

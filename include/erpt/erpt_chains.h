@@ -29,8 +29,6 @@ class ErptChains {
   };
   ErptChains(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times);
 
-  // Whether a seed is ERPT's to redistribute (not left to the direct-lighting pass).
-  static bool takesSeed(const SeedStore& store, size_t i, bool excludeDirect);
   // Starts floor(U + e / (m e_d)) chains for each seed of the batch (detailed balance: one,
   // depositing e / m per step; at most Config::maxChainsPerSeed, each then depositing
   // e / (m cap)) and runs steps whenever the queue is full; on return every chain of the batch
@@ -52,11 +50,6 @@ class ErptChains {
   void step();
   // Deposits `energy` (luminance) in the seed's colour at its film position, counted by `why`.
   void depositInPlace(const SeedStore& store, size_t seed, double energy, InPlaceReason why);
-  // Why seed `i` cannot start moving chains judging by its signature (too long, no mutation
-  // applies; kInPlaceReasonCount: it can), and whether its f is zero or not finite in a
-  // mutation's measure the strategy may pick (checked only for seeds that start chains).
-  InPlaceReason signatureReason(const SeedStore& store, size_t i) const;
-  bool zeroContribution(const SeedStore& store, size_t i) const;
   bool anyActive() const;
 
   const Tracer& tracer_;
@@ -73,7 +66,7 @@ class ErptChains {
   };
   const SeedStore* batch_ = nullptr;
   std::vector<PendingSeed> pending_;
-  std::vector<uint8_t> zeroF_;  // per seed starting chains: zeroContribution()
+  std::vector<uint8_t> zeroF_;  // per seed starting chains: seedHasZeroContribution()
   size_t pendingNext_ = 0;
   uint64_t seedCounter_ = 0, chainCounter_ = 0;
   double deposited_ = 0, inPlaceDeposited_ = 0;

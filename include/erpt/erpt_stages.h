@@ -33,7 +33,9 @@ constexpr uint32_t kNoPixel = 0xffffffffu;
 
 // Random dimensions of one chain step (stream key = the chain's key, dimension =
 // step * kStepDims + use). Direction perturbations at vertex j use kDimPerturb + 2j, +1.
-enum StepDim : uint32_t { kDimStrategy = 0, kDimAccept, kDimStart1, kDimStart2, kDimPerturb, kStepDims = 32 };
+// kDimComponent: the mixture component (PMC-ER's radius), after the last perturbation's.
+enum StepDim : uint32_t { kDimStrategy = 0, kDimAccept, kDimStart1, kDimStart2, kDimPerturb, kDimComponent = 30, kStepDims = 32 };
+static_assert(kDimPerturb + 2 * kMaxChainVertices <= kDimComponent, "step dimensions overlap");
 inline uint32_t stepDim(uint32_t step, uint32_t use) { return step * kStepDims + use; }
 
 // Statistics the accept stage counts (summed over threads).
@@ -70,11 +72,35 @@ inline void rejectProposal(ProposalQueue& p, RayQueue& rays, size_t i, RejectRea
   disableRay(rays, i);
 }
 
-// Chooses each active chain's mutation and starts it: the first ray of the proposal in `rays`
-// (lens: the eye ray through the perturbed film position; caustic: the perturbed ray leaving
-// the source vertex). Inactive chains and impossible proposals get a disabled ray.
+// Chooses each chain's mutation and perturbation size for a step (the mutate stage's first
+// pass), and the ratio a(z) / a(y) of the selection probabilities of that choice, which the
+// accept stage multiplies in. ERPT's rule (erptChooser: the strategy picks the family from the
+// signature, the settings the unit and size; the choice does not depend on the film position,
+// so the ratio is 1) is the default; PMC-ER's mixture over radii is the other (pmc_mixture.h).
+class MutationChooser {
+ public:
+  virtual ~MutationChooser() = default;
+  // For every slot of `range` with an active chain (resetProposal returned true): sets
+  // proposals.mutation (None: rejectProposal with kRejectNoMutation), perturbSize, component
+  // and state kProposalWalking.
+  virtual void choose(const ErptStepContext& ctx, const ChainQueue& chains, ProposalQueue& proposals, RayQueue& rays,
+                      IndexRange range) const = 0;
+  // After connect, for complete proposals: proposals.selection (left at 1 by default).
+  virtual void selectionRatios(const ChainQueue&, ProposalQueue&, IndexRange) const {}
+};
+const MutationChooser& erptChooser();
+
+// Clears slot i's proposal for a new step; false (and the proposal rejected) when the chain
+// is inactive.
+bool resetProposal(const ChainQueue& chains, ProposalQueue& proposals, RayQueue& rays, size_t i);
+
+// Chooses each active chain's mutation (`chooser`; null: erptChooser()) and starts it: the
+// first ray of the proposal in `rays` (lens: the eye ray through the perturbed film position;
+// caustic: the perturbed ray leaving the source vertex). Inactive chains and impossible
+// proposals get a disabled ray.
 void stageErptMutate(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
-                     ProposalQueue& proposals, RayQueue& rays, IndexRange range);
+                     ProposalQueue& proposals, RayQueue& rays, IndexRange range,
+                     const MutationChooser* chooser = nullptr);
 
 // Trace stage, after intersect: checks each walking proposal's hit against the vertex kind the
 // current path has there, stores the new vertex, and either sets the next ray (through a
@@ -88,8 +114,8 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
 // proposals whose connection is blocked.
 void stageErptConnect(const Tracer& tracer, RayQueue& shadowRays, ProposalQueue& proposals, IndexRange range);
 
-// Accept stage: q = min(1, f(z) T(z -> y) / (f(y) T(y -> z))) on luminance in the mutation's
-// measure, the coin, the step's deposit record(s) (erpt_deposit.cpp's rule), and the chain
+// Accept stage: q = min(1, f(z) a(z) T(z -> y) / (f(y) a(y) T(y -> z))) on luminance in the
+// mutation's measure (a(z) / a(y): proposals.selection), the coin, the step's deposit record(s) (erpt_deposit.cpp's rule), and the chain
 // update.
 void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue& chainVertices,
                      ProposalQueue& proposals, const VertexQueue& proposalVertices, DepositQueue& deposits,

@@ -43,6 +43,7 @@
 #define ERPT_PATH_FIELDS(F, V, C)                                                                   \
   F(uint32_t, pixel, {}, "pixel index y * width + x")                                               \
   F(uint32_t, sample, {}, "sample index within the pixel")                                          \
+  F(uint32_t, runIndex, {}, "index of the sample within its path-tracer run (PathSampleSet)")         \
   F(uint32_t, depth, {}, "segments traced so far (the camera ray is segment 1)")                    \
   C(throughput, "product of BSDF weights (f cos / pdf) / RR survival")                              \
   C(radiance, "radiance gathered so far")                                                           \
@@ -94,6 +95,7 @@
 // tracer sampled it. X_f (what the path tracer added to the image) = misWeight * estimate.
 #define ERPT_SEED_FIELDS(F, V, C)                                                                   \
   F(uint32_t, pixel, {}, "pixel index y * width + x")                                               \
+  F(uint32_t, path, {}, "index of the path (sample) that made it within its path-tracer run")       \
   F(float, filmX, {}, "film position x in pixels")                                                  \
   F(float, filmY, {}, "film position y in pixels")                                                  \
   F(uint8_t, explicitLight, {}, "1: reached the light by next-event estimation; 0: a BSDF sample hit it") \
@@ -139,6 +141,8 @@
   F(float, filmX, {}, "film position of the proposed path, x")                                      \
   F(float, filmY, {}, "y")                                                                          \
   F(float, acceptance, {}, "q(y -> z); 0 when rejected")                                            \
+  F(uint8_t, component, {}, "mixture component (PMC-ER: index of the radius) the proposal was made with; 0 for ERPT") \
+  F(float, selection, {}, "a(z) / a(y): probability of choosing this proposal's mutation and size at z over at y (1 unless the choice depends on the film position)") \
   C(color, "rgb(f) / lum(f) of the proposed path")
 
 // What one chain step deposits: kDepositsPerStep rows per chain slot (the paper's rule fills

@@ -11,6 +11,7 @@
 #include "erpt/erpt_settings.h"
 #include "erpt/image_io.h"
 #include "erpt/parallel.h"
+#include "erpt/pmc_settings.h"
 #include "erpt/scene.h"
 #include "erpt/seeds.h"
 
@@ -32,7 +33,8 @@ struct RenderSettings {
   // Path tracer with `seeds` set: called after every batch with that batch's seeds, which are
   // then cleared (streaming, so memory stays bounded). Unset: the store keeps all seeds.
   std::function<void(SeedStore&)> seedSink;
-  ErptSettings erpt;
+  ErptSettings erpt;  // ERPT, and the options PMC-ER shares with it (direct split, deposits, filters, pilot)
+  PmcSettings pmc;
   // The Embree scene. render() builds it once and every pass and sub-render (ERPT's pilot,
   // seed and direct passes, time-budgeted passes) shares it; unset: the integrator builds one.
   std::shared_ptr<const Tracer> tracer;
@@ -50,7 +52,8 @@ struct RenderStats {
   uint64_t rays = 0;
   uint64_t invalidSamples = 0;  // NaN/Inf estimates, dropped and counted
   StageTimes stages;
-  ErptStats erpt;
+  ErptStats erpt;  // ERPT; for PMC-ER the chain step's counts
+  PmcStats pmc;
   int spp = 0;  // samples per pixel rendered (time-budgeted renders choose it)
   int passes = 0;
   // Images the integrator makes besides the result, by name (ERPT's proposed-mutations filter:

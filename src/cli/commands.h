@@ -21,6 +21,8 @@ struct RenderArgs {
   std::vector<std::string> defines;
   bool quiet = false;
   ErptSettings erpt;
+  PmcSettings pmc;
+  std::string pmcFlow = "equal-deposition", pmcAdapt = "region", radii = "5,10,50";
   std::string strategy = "paper", deposit = "paper", flow = "equal-deposition", lensShape = "square", causticAngle = "erpt";
   bool pmFilter = false;
   double time = 0;
@@ -57,6 +59,8 @@ int runRender(const RenderArgs& args);
 int runInfo(const InfoArgs& args);
 // The ERPT part of the end-of-render summary (stderr).
 void printErptSummary(const RenderStats& stats);
+// The PMC-ER part (stderr).
+void printPmcSummary(const RenderStats& stats);
 
 // "-D name=value" strings to a map; throws UsageError on a malformed one.
 std::map<std::string, std::string> parseDefines(const std::vector<std::string>& defines);

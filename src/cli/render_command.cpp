@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
@@ -19,6 +20,8 @@ std::map<std::string, std::string> parseDefines(const std::vector<std::string>& 
   }
   return out;
 }
+
+static void addPmcOptions(CLI::App* cmd, RenderArgs& a);
 
 void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
   cmd->add_option("--spp", a.spp, "Samples per pixel (default: the scene's sample_count)")->check(CLI::Range(1, 1 << 24));
@@ -60,13 +63,35 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
       ->check(CLI::Range(1, 1000000));
   cmd->add_option("--direct-samples", e.directSamples, "ERPT: one-bounce paths by a direct-lighting pass with N samples per pixel (default 64); -1: ERPT renders them too, as in the paper")
       ->check(CLI::Range(-1, 1 << 16));
+  addPmcOptions(cmd, a);
+}
+
+static void addPmcOptions(CLI::App* cmd, RenderArgs& a) {
+  PmcSettings& p = a.pmc;
+  cmd->add_option("--pmc-flow", a.pmcFlow, "PMC-ER: equal-deposition (default, paper figure 2: members are Metropolis chains depositing equally per step) or balance (figure 3: members stay, each proposal receives its share times q)")
+      ->check(CLI::IsMember({"equal-deposition", "balance"}));
+  cmd->add_option("--population", p.population, "PMC-ER: members in the population (default 5000)")->check(CLI::Range(1, 10000000));
+  cmd->add_option("--mutations-per-member", p.mutationsPerMember, "PMC-ER: mutations of every member per iteration (default 16)")
+      ->check(CLI::Range(1, 1000000));
+  cmd->add_option("--radii", a.radii, "PMC-ER: perturbation radii of the mixture in pixels, comma separated (default 5,10,50)");
+  cmd->add_option("--pmc-adapt", a.pmcAdapt, "PMC-ER: mixture weights per image region, learned by an independent training population and frozen (region, default: unbiased), per member from its own acceptances (member, the paper's: can bias), or uniform (off)")
+      ->check(CLI::IsMember({"region", "member", "off"}));
+  cmd->add_option("--resample-rate", p.resampleRate, "PMC-ER: share of the population regenerated from the pool per iteration, and of a member's energy deposited per iteration (default 0.4)")
+      ->check(CLI::Range(1e-3, 1.0));
+  cmd->add_option("--alpha-floor", p.alphaFloor, "PMC-ER: smallest mixture weight eps (default 0.05)")->check(CLI::Range(0.0, 0.5));
+  cmd->add_option("--caustic-prob", p.causticProb, "PMC-ER: probability of the caustic perturbation where it applies (gamma_caustic, default 0.9)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--pmc-region", p.regionSize, "PMC-ER region adaptation: side of the square regions in pixels (default 16)")
+      ->check(CLI::Range(1, 65536));
+  cmd->add_option("--pmc-train-iterations", p.trainIterations, "PMC-ER region adaptation: iterations of the training population (default 4)")
+      ->check(CLI::Range(1, 100000));
 }
 
 void addRenderCommand(CLI::App& app, RenderArgs& a) {
   CLI::App* cmd = app.add_subcommand("render", "Render a Mitsuba XML scene to a linear EXR and a tone-mapped PNG");
   cmd->add_option("scene", a.scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required();
   cmd->add_option("-o,--output", a.output, "Output EXR path; the PNG is written beside it")->required();
-  cmd->add_option("--integrator", a.integrator, "Integrator: path (wavefront path tracer), erpt (energy redistribution path tracing) or direct (direct lighting, for debugging); default: the scene's, if it is one of these, else path");
+  cmd->add_option("--integrator", a.integrator, "Integrator: path (wavefront path tracer), erpt (energy redistribution path tracing), pmc-er (population Monte Carlo energy redistribution) or direct (direct lighting, for debugging); default: the scene's, if it is one of these, else path");
   cmd->add_option("--time", a.time, "Render for this many seconds instead of --spp samples per pixel (passes of growing spp; the image then depends on the machine's speed)")
       ->check(CLI::Range(1e-3, 1e7));
   addRenderOptions(cmd, a);
@@ -80,11 +105,32 @@ Scene loadSceneFor(const RenderArgs& a) {
   return scene;
 }
 
+static std::vector<float> parseRadii(const std::string& text) {
+  std::vector<float> radii;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    size_t used = 0;
+    float r = 0;
+    try {
+      r = std::stof(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (item.empty() || used != item.size()) throw UsageError("--radii expects comma-separated numbers, got '" + text + "'");
+    radii.push_back(r);
+    start = comma + 1;
+  }
+  return radii;
+}
+
 RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
   if (a.maxDepth == 0) throw UsageError("--max-depth must be -1 (unbounded) or at least 1");
   RenderSettings s;
   const bool sceneIntegratorKnown =
-      scene.integrator.type == "path" || scene.integrator.type == "direct" || scene.integrator.type == "erpt";
+      scene.integrator.type == "path" || scene.integrator.type == "direct" || scene.integrator.type == "erpt" ||
+      scene.integrator.type == "pmc-er";
   s.integrator = !a.integrator.empty() ? a.integrator : sceneIntegratorKnown ? scene.integrator.type : "path";
   s.width = a.width;
   s.height = a.height;
@@ -102,6 +148,10 @@ RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
   s.erpt.causticAngle = a.causticAngle == "veach" ? CausticAngle::Veach : CausticAngle::Erpt;
   s.erpt.flow = a.flow == "detailed-balance" ? FlowRule::DetailedBalance : FlowRule::EqualDeposition;
   if (a.pmFilter && s.erpt.pmFilterRadius < 0) s.erpt.pmFilterRadius = 3;
+  s.pmc = a.pmc;
+  s.pmc.flow = a.pmcFlow == "balance" ? PmcFlow::Balance : PmcFlow::EqualDeposition;
+  s.pmc.adapt = a.pmcAdapt == "member" ? PmcAdapt::Member : a.pmcAdapt == "off" ? PmcAdapt::Off : PmcAdapt::Region;
+  s.pmc.radii = parseRadii(a.radii);
   s.timeBudget = a.time;
   if (!a.filter.empty()) {
     s.filterSet = true;
@@ -133,7 +183,8 @@ int runRender(const RenderArgs& a) {
     fs::path p = out;
     p.replace_filename(out.stem().string() + "-" + name + ".exr");
     writeImageAtomic(p.string(), extra);
-    if (name != "proposals") writePngAtomic(fs::path(p).replace_extension(".png").string(), extra);  // counts: EXR only
+    // Counts and per-pixel statistics: EXR only.
+    if (name != "proposals" && name != "strategy") writePngAtomic(fs::path(p).replace_extension(".png").string(), extra);
   }
   writeImageAtomic(out.string(), image);
   writePngAtomic(png.string(), image);
@@ -145,6 +196,7 @@ int runRender(const RenderArgs& a) {
                stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0,
                (unsigned long long)stats.invalidSamples, out.string().c_str(), png.string().c_str());
   if (s.integrator == "erpt") printErptSummary(stats);
+  if (s.integrator == "pmc-er") printPmcSummary(stats);
   return 0;
 }
 

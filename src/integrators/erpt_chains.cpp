@@ -5,6 +5,7 @@
 
 #include "erpt/chain_step.h"
 #include "erpt/rng.h"
+#include "erpt/seed_checks.h"
 
 namespace erpt {
 
@@ -26,44 +27,6 @@ ErptChains::ErptChains(const Tracer& tracer, const Config& config, Film& film, E
   }
 }
 
-bool ErptChains::takesSeed(const SeedStore& store, size_t i, bool excludeDirect) {
-  // Eye, one surface vertex, light: a one-bounce path (two vertices: an emitter seen directly).
-  return !excludeDirect || store.seeds.vertexCount[i] > 3;
-}
-
-InPlaceReason ErptChains::signatureReason(const SeedStore& store, size_t i) const {
-  const uint32_t n = store.seeds.vertexCount[i];
-  if (n > uint32_t(kMaxChainVertices)) return kInPlaceTooLong;
-  uint8_t kinds[kMaxChainVertices];
-  for (uint32_t j = 0; j < n; ++j) kinds[j] = store.vertices.kind[store.seeds.vertexBegin[i] + j];
-  // Both choices of the `Mixed` coin.
-  const bool none = chooseMutation(settings().strategy, kinds, int(n), 0.0f) == MutationKind::None &&
-                    chooseMutation(settings().strategy, kinds, int(n), 0.999f) == MutationKind::None;
-  return none ? kInPlaceNoMutation : kInPlaceReasonCount;
-}
-
-bool ErptChains::zeroContribution(const SeedStore& store, size_t i) const {
-  const uint32_t n = store.seeds.vertexCount[i];  // at most kMaxChainVertices (signatureReason)
-  PathVertex path[kMaxChainVertices];
-  uint8_t kinds[kMaxChainVertices];
-  for (uint32_t j = 0; j < n; ++j) {
-    loadPathVertex(store.vertices, store.seeds.vertexBegin[i] + j, path[j]);
-    kinds[j] = path[j].kind;
-  }
-  // Every mutation the strategy may pick for this signature (the choice depends on the
-  // signature only, which mutations preserve) must see a path of positive, finite f: a chain
-  // standing on a zero of its target would accept anything.
-  for (float u : {0.0f, 0.999f}) {
-    const MutationKind family = chooseMutation(settings().strategy, kinds, int(n), u);
-    if (family == MutationKind::None) continue;
-    const MutationKind kind = family == MutationKind::Lens ? config_.step.lensKind() : config_.step.causticKind();
-    const float f = luminance(contributionFor(kind, config_.step.measure, path, int(n), store.seeds.filmX[i],
-                                              store.seeds.filmY[i]));
-    if (!(f > 0) || !std::isfinite(f)) return true;
-  }
-  return false;
-}
-
 void ErptChains::consume(const SeedStore& batch) {
   batch_ = &batch;
   pending_.clear();
@@ -80,7 +43,7 @@ void ErptChains::consume(const SeedStore& batch) {
   };
   std::vector<Started> started;
   for (size_t i = 0; i < batch.size(); ++i) {
-    if (!takesSeed(batch, i, settings().directSamples > 0)) continue;
+    if (!seedForChains(batch, i, settings().directSamples > 0)) continue;
     const float e = luminance(batch.contribution(i));
     if (!(e > 0) || !std::isfinite(e)) continue;
     ++stats_.seeds;
@@ -88,7 +51,7 @@ void ErptChains::consume(const SeedStore& batch) {
     const float u = uniformFloat(streamKey(config_.seed, kSeedStream, seedCounter_++), 0);
     // The signature alone says whether a chain can hold and move the seed (cheap, every seed):
     // if not, or with no deposition energy, the seed's own X_f goes where it is.
-    const InPlaceReason bySignature = signatureReason(batch, i);
+    const InPlaceReason bySignature = seedSignatureReason(config_.step, batch, i);
     if (bySignature != kInPlaceReasonCount || (!detailedBalance && !(ed > 0))) {
       depositInPlace(batch, i, e, bySignature != kInPlaceReasonCount ? bySignature : kInPlaceNoDepositEnergy);
       continue;
@@ -105,7 +68,7 @@ void ErptChains::consume(const SeedStore& batch) {
   }
   zeroF_.assign(started.size(), 0);
   forEachRange("erpt seed check", started.size(), 64, [&](IndexRange r) {
-    for (size_t k = r.begin; k < r.end; ++k) zeroF_[k] = zeroContribution(batch, started[k].seed);
+    for (size_t k = r.begin; k < r.end; ++k) zeroF_[k] = seedHasZeroContribution(config_.step, batch, started[k].seed);
   }, &times_);
   for (size_t k = 0; k < started.size(); ++k) {
     const Started& st = started[k];
@@ -154,14 +117,10 @@ bool ErptChains::refill() {
 }
 
 void ErptChains::depositInPlace(const SeedStore& store, size_t seed, double energy, InPlaceReason why) {
-  // `energy` (luminance) in the seed's colour rgb(X_f) / lum(X_f).
-  const Color c = store.contribution(seed);
-  const Color deposit = c * float(energy / double(luminance(c)));
   ++stats_.inPlace[why];
-  deposited_ += luminance(deposit);
-  inPlaceDeposited_ += luminance(deposit);
-  config_.step.measure.film.splat(store.seeds.filmX[seed], store.seeds.filmY[seed],
-                                  [&](uint32_t pixel, float w) { film_.add(pixel, deposit * w); });
+  const double added = depositSeedInPlace(config_.step.measure.film, store, seed, energy, film_);
+  deposited_ += added;
+  inPlaceDeposited_ += added;
 }
 
 void ErptChains::step() {

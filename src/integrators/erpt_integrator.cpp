@@ -18,6 +18,7 @@
 #include "erpt/rng.h"
 #include "erpt/erpt_chains.h"
 #include "erpt/noise_filters.h"
+#include "erpt/seed_checks.h"
 #include "path_integrator.h"
 #include "render_setup.h"
 
@@ -55,7 +56,7 @@ double erptPilotEnergy(const Scene& scene, const RenderSettings& s, RenderStats&
   const bool excludeDirect = s.erpt.directSamples > 0;
   pilot.seedSink = [&](SeedStore& batch) {
     for (size_t i = 0; i < batch.size(); ++i) {
-      if (!ErptChains::takesSeed(batch, i, excludeDirect)) continue;
+      if (!seedForChains(batch, i, excludeDirect)) continue;
       const float e = luminance(batch.contribution(i));
       if (e > 0 && std::isfinite(e)) energy += e;
     }
@@ -100,18 +101,23 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
   stats.rays += seedStats.rays + es.rays;
   stats.invalidSamples = seedStats.invalidSamples;
   for (const auto& [name, seconds] : seedStats.stages.all()) stats.stages.add("seed " + name, seconds);
-  RgbImage image = setup.film.resolve(double(s.spp));
+  return finishRedistribution(scene, s, stats, setup.film.resolve(double(s.spp)),
+                              o.pmFilterRadius >= 0 ? &chains.proposalTally() : nullptr);
+}
+
+RgbImage finishRedistribution(const Scene& scene, const RenderSettings& s, RenderStats& stats, RgbImage image,
+                              const std::vector<uint32_t>* tally) {
+  const ErptSettings& o = s.erpt;
   RgbImage chainsOnly;
-  if (o.pmFilterRadius >= 0) {
+  if (tally) {
     // The filter rescales what the chains deposited (not the direct pass) and needs it apart.
     chainsOnly = image;
-    RgbImage tally;
-    tally.width = s.width;
-    tally.height = s.height;
-    for (uint32_t t : chains.proposalTally()) tally.pixels.push_back(Color(float(t)));
-    stats.extraImages.emplace_back("proposals", std::move(tally));
+    RgbImage counts;
+    counts.width = s.width;
+    counts.height = s.height;
+    for (uint32_t t : *tally) counts.pixels.push_back(Color(float(t)));
+    stats.extraImages.emplace_back("proposals", std::move(counts));
   }
-
   if (o.directSamples > 0) {
     RenderSettings direct = s;
     direct.spp = o.directSamples;
@@ -124,10 +130,11 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
     stats.rays += directStats.rays;
     for (const auto& [name, seconds] : directStats.stages.all()) stats.stages.add("direct " + name, seconds);
   }
-  if (o.pmFilterRadius >= 0) {
+  if (tally) {
     // Keep the unfiltered image and the chains' part for the user (and for time-budgeted
     // renders, which filter the sum of their passes).
-    RgbImage filtered = proposalFilteredImage(image, chainsOnly, stats.extraImages.back().second, o.pmFilterRadius);
+    const RgbImage counts = stats.extraImages.back().second;
+    RgbImage filtered = proposalFilteredImage(image, chainsOnly, counts, o.pmFilterRadius);
     stats.extraImages.emplace_back("raw", std::move(image));
     stats.extraImages.emplace_back("chains", std::move(chainsOnly));
     return filtered;

@@ -20,11 +20,10 @@ namespace {
 constexpr size_t kBatchPaths = 1 << 17;
 constexpr size_t kGrain = 512;
 
-void initPaths(PathQueue& paths, PathSlotQueue& slots, const std::vector<uint32_t>& order, size_t spp,
-               size_t first, IndexRange r) {
+void initPaths(PathQueue& paths, PathSlotQueue& slots, const PathSampleSet& samples, size_t first, IndexRange r) {
   for (size_t i = r.begin; i < r.end; ++i) {
-    paths.pixel[i] = order[(first + i) / spp];
-    paths.sample[i] = uint32_t((first + i) % spp);
+    samples.at(first + i, paths.pixel[i], paths.sample[i]);
+    paths.runIndex[i] = uint32_t(first + i);
     paths.depth[i] = 1;
     paths.throughputSet(i, Color(1.0f));
     paths.radianceSet(i, Color(0.0f));
@@ -47,13 +46,11 @@ void writeEyeVertices(VertexQueue& history, PathQueue& paths, Vec3 eye, IndexRan
 }
 }  // namespace
 
-RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderStats& stats) {
-  RenderSetup setup(scene, settings);
+void tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, const PathTraceOutput& out,
+                      RenderStats& stats) {
   const Tracer& tracer = setup.tracer;
   const StageContext& ctx = setup.ctx;
-  Film& film = setup.film;
-  const std::vector<uint32_t>& order = setup.order;
-  const size_t spp = size_t(settings.spp), total = setup.totalSamples;
+  const size_t total = samples.count;
   PathQueue paths;
   PathSlotQueue slots[2];
   RayQueue rays[2], shadowRays;
@@ -72,10 +69,10 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
     prepareRays(shadowRays, n);
     hits.resize(n);
     int cur = 0;
-    const bool recording = settings.seeds != nullptr;
+    const bool recording = out.seeds != nullptr;
     if (recording) history.resize(n);
     forEachRange("generate", n, kGrain, [&](IndexRange r) {
-      initPaths(paths, slots[cur], order, spp, first, r);
+      initPaths(paths, slots[cur], samples, first, r);
       stageGenerateCameraRays(ctx, paths.pixel.data(), paths.sample.data(), rays[cur], r, paths.filmX.data(),
                               paths.filmY.data());
       if (recording) writeEyeVertices(history, paths, setup.camera.position(), r);
@@ -102,7 +99,7 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
       }, &stats.stages);
       auto start = std::chrono::steady_clock::now();
       if (recording) {
-        stageRecordSeeds(ctx, paths, slots[cur], hits, shadowRays, bounceHistory, live, *settings.seeds);
+        stageRecordSeeds(ctx, paths, slots[cur], hits, shadowRays, bounceHistory, live, *out.seeds);
         stats.stages.add("record seeds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
         start = std::chrono::steady_clock::now();
       }
@@ -113,18 +110,33 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
     }
 
     for (size_t i = 0; i < n; ++i) {
-      invalid += !film.addIfFinite(paths.pixel[i], paths.radianceAt(i));
+      const Color L = paths.radianceAt(i);
+      invalid += !isFinite(L);
+      if (out.film) out.film->addIfFinite(paths.pixel[i], L);
     }
-    if (recording && settings.seedSink) {
-      settings.seedSink(*settings.seeds);
-      settings.seeds->clear();
+    if (recording && out.seedSink) {
+      out.seedSink(*out.seeds);
+      out.seeds->clear();
     }
-    if (settings.progress) settings.progress(double(first + n) / double(total));
+    if (out.progress) out.progress(double(first + n) / double(total));
   }
-  stats.samples = total;
-  stats.rays = rayCount;
-  stats.invalidSamples = invalid;
-  return film.resolve(double(spp));
+  stats.samples += total;
+  stats.rays += rayCount;
+  stats.invalidSamples += invalid;
+}
+
+RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderStats& stats) {
+  RenderSetup setup(scene, settings);
+  const std::vector<uint32_t>& order = setup.order;
+  const size_t spp = size_t(settings.spp);
+  // Sample k: pixel order[k / spp], its sample k % spp (a pixel's samples are neighbours).
+  const PathSampleSet samples{setup.totalSamples, [&](size_t k, uint32_t& pixel, uint32_t& sample) {
+                                pixel = order[k / spp];
+                                sample = uint32_t(k % spp);
+                              }};
+  tracePathSamples(setup, samples, PathTraceOutput{&setup.film, settings.seeds, settings.seedSink, settings.progress},
+                   stats);
+  return setup.film.resolve(double(spp));
 }
 
 }  // namespace erpt

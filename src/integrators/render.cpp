@@ -9,6 +9,7 @@
 #include "erpt/rng.h"
 #include "erpt/tracer.h"
 #include "erpt_integrator.h"
+#include "pmc_er_integrator.h"
 #include "path_integrator.h"
 
 namespace erpt {
@@ -23,6 +24,7 @@ double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(
 RgbImage renderOnce(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
   if (s.integrator == "path") return renderPath(scene, s, stats);
   if (s.integrator == "erpt") return renderErpt(scene, s, stats);
+  if (s.integrator == "pmc-er") return renderPmcEr(scene, s, stats);
   if (s.integrator == "direct") return renderDirect(scene, s, stats);
   throw UsageError("unknown integrator '" + s.integrator + "' (available: " + integratorNames() + ")");
 }
@@ -43,6 +45,41 @@ void addErptStats(ErptStats& to, const ErptStats& from) {
   to.discardedDeposits += from.discardedDeposits;
   to.discardedEnergy += from.discardedEnergy;
 }
+
+void addPmcStats(PmcStats& to, const PmcStats& from) {
+  to.iterations += from.iterations;
+  to.drainIterations += from.drainIterations;
+  to.trainingIterations += from.trainingIterations;
+  to.population = from.population;
+  to.poolSize += from.poolSize;
+  to.poolUsed += from.poolUsed;
+  to.candidates += from.candidates;
+  to.inPlaceSeeds += from.inPlaceSeeds;
+  to.membersBorn += from.membersBorn;
+  to.eliminated += from.eliminated;
+  to.split += from.split;
+  to.energyRegenerated += from.energyRegenerated;
+  to.energyEliminated += from.energyEliminated;
+  to.energyFinal += from.energyFinal;
+  to.depositEnergy = from.depositEnergy;
+  to.meanDeposit = from.meanDeposit;
+  to.radiusCount = from.radiusCount;
+  for (int k = 0; k < kMaxPmcRadii; ++k) {
+    to.radii[k] = from.radii[k];
+    for (int m = 0; m < kMutationKindCount; ++m) {
+      to.proposed[k][m] += from.proposed[k][m];
+      to.accepted[k][m] += from.accepted[k][m];
+      to.acceptanceSum[k][m] += from.acceptanceSum[k][m];
+    }
+    for (int b = 0; b < kAlphaBins; ++b) to.alphaHistogram[k][b] += from.alphaHistogram[k][b];
+  }
+  to.resampleSeconds += from.resampleSeconds;
+  to.regenerateSeconds += from.regenerateSeconds;
+  to.chainSeconds += from.chainSeconds;
+  to.trainSeconds += from.trainSeconds;
+}
+
+bool redistributes(const std::string& integrator) { return integrator == "erpt" || integrator == "pmc-er"; }
 
 // Running sum of pass images weighted by their samples per pixel.
 struct WeightedSum {
@@ -71,7 +108,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
   pass.timeBudget = 0;
   pass.onPass = nullptr;
   pass.progress = nullptr;
-  if (s.integrator == "erpt") {
+  if (redistributes(s.integrator)) {
     // One pilot for all passes (it is independent of every one of them), and e_d from the
     // configured spp, so each pass runs the configured mutations per seed.
     pass.erpt.knownPilotEnergy = erptPilotEnergy(scene, s, stats);
@@ -83,7 +120,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
   // The image of all passes so far. The proposed-mutations filter is not linear: it is applied
   // once, to the sum of the passes' chain images and tallies.
   auto resultSoFar = [&]() {
-    if (s.integrator != "erpt" || s.erpt.pmFilterRadius < 0) return image.mean(stats.spp);
+    if (!redistributes(s.integrator) || s.erpt.pmFilterRadius < 0) return image.mean(stats.spp);
     RgbImage raw, chains, proposals;
     for (size_t k = 0; k < extras.size(); ++k) {
       const std::string& name = stats.extraImages[k].first;
@@ -97,7 +134,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
   for (int p = 0;; ++p) {
     pass.spp = passSpp;
     pass.seed = p == 0 ? s.seed : streamKey(s.seed, kPassStream, uint64_t(p));
-    if (s.integrator == "erpt" && s.erpt.directSamples > 0)
+    if (redistributes(s.integrator) && s.erpt.directSamples > 0)
       pass.erpt.directSamples = std::max(1, int(std::lround(double(s.erpt.directSamples) * passSpp / s.spp)));
     const Clock::time_point passStart = Clock::now();
     RenderStats ps;
@@ -114,6 +151,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
     stats.invalidSamples += ps.invalidSamples;
     for (const auto& [name, seconds] : ps.stages.all()) stats.stages.add(name, seconds);
     addErptStats(stats.erpt, ps.erpt);
+    addPmcStats(stats.pmc, ps.pmc);
     stats.spp += passSpp;
     stats.passes = p + 1;
 
@@ -145,12 +183,14 @@ RenderSettings resolveSettings(const Scene& scene, RenderSettings s) {
   return s;
 }
 
-const char* integratorNames() { return "path, direct, erpt"; }
+const char* integratorNames() { return "path, direct, erpt, pmc-er"; }
 
 RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
   RenderSettings s = resolveSettings(scene, requested);
   const Clock::time_point start = Clock::now();
-  if (s.integrator == "erpt") validateErptSettings(s.erpt);  // before the BVH build: fail fast
+  // Before the BVH build: fail fast.
+  if (s.integrator == "erpt") validateErptSettings(s.erpt);
+  if (s.integrator == "pmc-er") validatePmcSettings(s.pmc, s.erpt);
   if (!s.tracer) {
     ThreadPool pool(s.threads);  // the BVH build uses the threads the render may use
     s.tracer = std::make_shared<const Tracer>(scene);

@@ -73,7 +73,11 @@ float causticThetaMax(const MeasureContext& c, const CurrentPath& y, float pixel
   for (int k = 2; k <= s; ++k) toSource += double(length(y.vertices[k].p - y.vertices[k - 1].p));
   const double eyeSegment = double(length(y.vertices[1].p - c.camera.position()));
   const double thetaPixels = std::atan(double(pixels) / double(c.camera.pixelsPerPlaneUnit()));
-  return toSource > 0 ? float(thetaPixels * eyeSegment / toSource) : 0.0f;
+  // At most pi: uniform theta in [0, pi] already covers the sphere of directions; beyond it
+  // theta would wrap around and the density 1 / (2 pi theta_max sin theta) would no longer
+  // be the density of the direction (large radii with a long eye segment and a short source
+  // segment, e.g. PMC-ER's 50 pixels, reach it).
+  return toSource > 0 ? float(std::min(double(kPi), thetaPixels * eyeSegment / toSource)) : 0.0f;
 }
 
 namespace {

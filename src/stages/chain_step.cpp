@@ -18,7 +18,7 @@ size_t raysInFlight(const RayQueue& rays, IndexRange r) {
 
 uint64_t ChainStep::propose(ErptQueues& q) const {
   forEachRange("erpt mutate", q.chains.size(), grain, [&](IndexRange r) {
-    stageErptMutate(ctx, q.chains, q.chainVertices, q.proposals, q.rays, r);
+    stageErptMutate(ctx, q.chains, q.chainVertices, q.proposals, q.rays, r, chooser);
     for (size_t i = r.begin; i < r.end; ++i) disableRay(q.shadowRays, i);
   }, times);
   return traceAndConnect(q);
@@ -52,6 +52,7 @@ uint64_t ChainStep::traceAndConnect(ErptQueues& q) const {
 
 void ChainStep::accept(ErptQueues& q, ErptCounters& counters) const {
   forEachRange("erpt accept", q.chains.size(), grain, [&](IndexRange r) {
+    if (chooser) chooser->selectionRatios(q.chains, q.proposals, r);
     stageErptAccept(ctx, q.chains, q.chainVertices, q.proposals, q.proposalVertices, q.deposits, counters, r);
   }, times);
 }

@@ -63,7 +63,9 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
         const float ly = chains.fLum[i];
         const CurrentPath py{y, kinds, n, chains.filmX[i], chains.filmY[i]};
         const CurrentPath pz{z, kinds, n, proposals.filmX[i], proposals.filmY[i]};
-        const float ratio = unit.transitionRatio(ctx.measure, py, pz, proposals.perturbSize[i]);  // T(z->y) / T(y->z)
+        // T(z->y) / T(y->z), times a(z) / a(y) when the choice depends on the film position.
+        const float ratio =
+            unit.transitionRatio(ctx.measure, py, pz, proposals.perturbSize[i]) * proposals.selection[i];
         if (!(ly > 0) || !std::isfinite(ly)) {
           // A chain must never stand on a path of zero density in the mutation's measure (it
           // would accept everything); seeds are checked when chains start, this is the guard.

@@ -29,6 +29,7 @@ void appendSeed(SeedStore& store, const PathQueue& paths, uint32_t id, bool expl
                 float pLength, float pLight, uint32_t begin) {
   SeedQueue::Row seed;
   seed.pixel = paths.pixel[id];
+  seed.path = paths.runIndex[id];
   seed.filmX = paths.filmX[id];
   seed.filmY = paths.filmY[id];
   seed.explicitLight = explicitLight;

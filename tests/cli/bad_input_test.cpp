@@ -2,6 +2,8 @@
 // non-zero exit code, and no output image (not even a partial one).
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include <filesystem>
 
 #include "support/test_support.h"
@@ -132,6 +134,31 @@ TEST(BadInputCli, AbsurdOptionsAreRejected) {
   r = test::runCli("render -q " + scene + " -o " + dir.file("no/such/dir/o.exr"));
   EXPECT_NE(r.exitCode, 0);
   EXPECT_NE(r.output.find("does not exist"), std::string::npos) << r.output;
+}
+
+// PMC-ER's options: one-line errors naming the option, non-zero exit, no image.
+TEST(BadInputCli, AbsurdPmcOptionsAreRejected) {
+  TempDir dir;
+  std::string scene = dir.write("s.xml", "<scene version=\"3.0.0\"><shape type=\"cube\"/></scene>");
+  const std::pair<const char*, const char*> cases[] = {
+      {"--population 0", "--population"},
+      {"--radii 5,abc", "--radii"},
+      {"--radii 5,,10", "--radii"},
+      {"--radii 5,-1", "--radii"},
+      {"--radii 1,2,3,4,5,6,7,8,9", "--radii"},
+      {"--resample-rate 0", "--resample-rate"},
+      {"--alpha-floor 0.4", "--alpha-floor"},
+      {"--pmc-flow sideways", "--pmc-flow"},
+      {"--pmc-adapt always", "--pmc-adapt"},
+      {"--mutations-per-member 0", "--mutations-per-member"},
+      {"--pmc-flow balance --max-consecutive 10", "--max-consecutive"},
+  };
+  for (const auto& [args, option] : cases) {
+    test::CommandResult r = test::runCli("render -q " + scene + " -o " + dir.file("o.exr") + " --integrator pmc-er " + args);
+    EXPECT_NE(r.exitCode, 0) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(option), std::string::npos) << args << ": " << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("o.exr"))) << args;
+  }
 }
 
 TEST(BadInputCli, UnsupportedPluginIsAWarningNotAnError) {

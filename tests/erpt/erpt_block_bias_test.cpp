@@ -3,54 +3,22 @@
 // mean stays right.
 #include <gtest/gtest.h>
 
-#include <cstdio>
-#include <vector>
-
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
-#include "support/image_stats.h"
+#include "support/block_bias.h"
 #include "support/test_support.h"
 
 namespace erpt {
 namespace {
 
-RgbImage renderWith(const Scene& scene, RenderSettings s) {
-  RenderStats stats;
-  RgbImage img = render(scene, s, stats);
-  EXPECT_EQ(stats.invalidSamples, 0u);
-  return img;
-}
-
 // Sixteen ERPT renders (64x64, box filter, `spp` seeds per pixel, `erpt` options, seeds from
-// `seed`) against eight path-traced ones of 512 spp, per 8x8 block. Welch's z with variances
-// from 16 and 8 runs has slightly heavier tails than a normal one (mean z^2 about 1.15 when
-// unbiased); 2.0 is about four standard errors of that mean away.
+// `seed`) against eight path-traced ones of 512 spp, per 8x8 block (support/block_bias.h).
 void expectErptMatchesPathTracerBlockByBlock(const Scene& scene, int spp, const ErptSettings& erpt, uint64_t seed) {
-  RenderSettings base;
-  base.width = base.height = 64;
-  base.filterSet = true;
-  base.filter = FilterKind::Box;
-  std::vector<RgbImage> erptImages, pathImages;
-  for (int k = 0; k < 16; ++k) {
-    RenderSettings s = base;
-    s.integrator = "erpt";
-    s.spp = spp;
-    s.seed = seed + uint64_t(k);
-    s.erpt = erpt;
-    erptImages.push_back(renderWith(scene, s));
-  }
-  for (int k = 0; k < 8; ++k) {
-    RenderSettings s = base;
-    s.integrator = "path";
-    s.spp = 512;
-    s.seed = seed + 1000 + uint64_t(k);
-    pathImages.push_back(renderWith(scene, s));
-  }
-  const test::BlockZScores z = test::blockZScores(erptImages, pathImages, 8);
-  std::printf("%zu blocks of 8x8: mean z^2 %.2f, worst |z| %.2f\n", z.z.size(), z.meanSquare, z.worst);
-  ASSERT_EQ(z.z.size(), 64u);
-  EXPECT_LT(z.meanSquare, 2.0);
-  EXPECT_LT(z.worst, 4.5);
+  RenderSettings s;
+  s.integrator = "erpt";
+  s.spp = spp;
+  s.erpt = erpt;
+  test::expectMatchesPathTracerBlockByBlock(scene, s, 16, seed);
 }
 
 // Plastic (a smooth diffuse lobe under a Dirac coat lobe at the same vertex) on the floor, back

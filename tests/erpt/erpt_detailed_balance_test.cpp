@@ -18,6 +18,8 @@
 #include <vector>
 
 #include "erpt/chain_step.h"
+#include "erpt/pmc_mixture.h"
+#include "erpt/rng.h"
 #include "erpt/surface.h"
 #include "support/erpt_world.h"
 #include "support/test_support.h"
@@ -34,14 +36,37 @@ struct BalanceCase {
   LensShape shape;
   CausticAngle angle;
   MutationKind kind;
+  // PMC-ER's mixture with region weights: radii 5/10/50 and a table far from uniform, so the
+  // selection probabilities a_k(y) and a_k(z) of a move differ (by up to ~15x).
+  bool pmcRegionMixture = false;
 };
+
+constexpr int kRegionSize = 8;
+
+PmcMixture regionMixture(int width, int height) {
+  PmcSettings s;
+  s.adapt = PmcAdapt::Region;
+  s.regionSize = kRegionSize;
+  PmcMixture mixture(s, width, height);
+  std::vector<double> sums(size_t(mixture.regionCount()) * 3);
+  for (size_t i = 0; i < sums.size(); ++i) sums[i] = 1000.0 * double(uniformFloat(streamKey(3, i, 0), 0));
+  mixture.setRegionTable(sums, 1.0);
+  return mixture;
+}
+
+// a_k(x) of the table, with the region written out here.
+double selectionAt(const PmcMixture& m, int width, int height, float x, float y, int k) {
+  const int rx = std::clamp(int(std::floor(x / kRegionSize)), 0, (width + kRegionSize - 1) / kRegionSize - 1);
+  const int ry = std::clamp(int(std::floor(y / kRegionSize)), 0, (height + kRegionSize - 1) / kRegionSize - 1);
+  return m.regionTable()[size_t((ry * ((width + kRegionSize - 1) / kRegionSize) + rx) * 3 + k)];
+}
 
 // Veach's angle range for an image move of `pixels` pixels, written out from eq. 6 here.
 double thetaMaxOf(const ErptWorld& w, const PathVertex* p, int s, float pixels) {
   double toSource = 0;
   for (int k = 2; k <= s; ++k) toSource += double(length(p[k].p - p[k - 1].p));
   const double eye = double(length(p[1].p - w.camera->position()));
-  return std::atan(double(pixels) / double(w.camera->pixelsPerPlaneUnit())) * eye / toSource;
+  return std::min(double(kPi), std::atan(double(pixels) / double(w.camera->pixelsPerPlaneUnit())) * eye / toSource);
 }
 
 // `wantedThroughSpecular`: how many of the reverse moves must regenerate a specular vertex
@@ -52,16 +77,18 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
   ErptStepContext ctx = w.stepContext(c.strategy);
   ctx.settings.lensShape = c.shape;
   ctx.settings.causticAngle = c.angle;
+  const PmcMixture mixture = regionMixture(w.width, w.height);
+  const MutationChooser* chooser = c.pmcRegionMixture ? &mixture : nullptr;
   ChainQueues forward(4096);
   // Seeds from all over the image (the spheres fill its lower half); an odd stride, so that
   // seeds recorded in pairs (a next-event and a BSDF-sampled one) are both taken.
   const size_t loaded = forward.loadSeeds(w, 10, 1.0f, 4, std::max<size_t>(1, w.seeds.size() / 4096) | 1);
   ASSERT_GT(loaded, 0u);
-  forward.propose(w, ctx);
+  forward.propose(w, ctx, chooser);
   const ChainQueue y = forward.chains;
   const VertexQueue yVertices = forward.chainVertices;
   ErptCounters counters;
-  ChainStep{*w.tracer, ctx}.accept(forward, counters);
+  ChainStep{*w.tracer, ctx, nullptr, 256, chooser}.accept(forward, counters);
 
   // Reverse: chains at z (every valid proposal of the kind), aimed back at y.
   ChainQueues back(loaded);
@@ -113,7 +140,7 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
     disableRay(back.rays, k);
   }
   for (size_t k = 0; k < back.chains.size(); ++k) disableRay(back.shadowRays, k);
-  const ChainStep step{*w.tracer, ctx};
+  const ChainStep step{*w.tracer, ctx, nullptr, 256, chooser};
   step.traceAndConnect(back);
   const ChainQueue zChains = back.chains;
   const VertexQueue zVertices = back.chainVertices;
@@ -147,6 +174,12 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
       const int s = forward.proposals.regenLast[i] + 1;
       tYZ = 1 / thetaMaxOf(w, py, s, forward.proposals.perturbSize[i]);
       tZY = 1 / thetaMaxOf(w, pz, s, forward.proposals.perturbSize[i]);
+    }
+    if (c.pmcRegionMixture) {
+      // The probability of choosing this component where the chain stands.
+      const int comp = forward.proposals.component[i];
+      tYZ *= selectionAt(mixture, w.width, w.height, y.filmX[i], y.filmY[i], comp);
+      tZY *= selectionAt(mixture, w.width, w.height, zChains.filmX[k], zChains.filmY[k], comp);
     }
     const double lhs = fy * tYZ * forward.proposals.acceptance[i], rhs = fz * tZY * back.proposals.acceptance[k];
     errors.push_back(std::abs(lhs / rhs - 1));
@@ -194,6 +227,20 @@ TEST(ErptDetailedBalance, CausticVeachCornellBox) { checkDetailedBalance(cornell
 // chains in a render): about 200 of the ~3,000 reverse moves here.
 TEST(ErptDetailedBalance, CausticErptThroughGlassAndMirror) { checkDetailedBalance(defaultScene(), kCausticErpt, 300, 100); }
 TEST(ErptDetailedBalance, CausticVeachThroughGlassAndMirror) { checkDetailedBalance(defaultScene(), kCausticVeach, 300, 100); }
+
+// PMC-ER's kernel: the mixture over radii 5/10/50 picked by region weights (the family by
+// gamma_caustic 0.9 where the caustic perturbation applies), so a move's T ratio is the chosen
+// radius's and the acceptance carries a_k(z) / a_k(y). With the selection ratio dropped, the
+// flows are off by that ratio (up to ~15x here).
+const BalanceCase kPmcLens{"PMC-ER lens (disk, region mixture)", MutationStrategy::Mixed, LensShape::Disk,
+                           CausticAngle::Veach, MutationKind::LensDisk, true};
+const BalanceCase kPmcCaustic{"PMC-ER caustic (Veach, region mixture)", MutationStrategy::Mixed, LensShape::Disk,
+                              CausticAngle::Veach, MutationKind::CausticVeach, true};
+TEST(ErptDetailedBalance, PmcRegionMixtureLensCornellBox) { checkDetailedBalance(cornell(), kPmcLens, 100); }
+TEST(ErptDetailedBalance, PmcRegionMixtureCausticCornellBox) { checkDetailedBalance(cornell(), kPmcCaustic, 300); }
+TEST(ErptDetailedBalance, PmcRegionMixtureCausticThroughGlassAndMirror) {
+  checkDetailedBalance(defaultScene(), kPmcCaustic, 300, 50);
+}
 
 }  // namespace
 }  // namespace erpt

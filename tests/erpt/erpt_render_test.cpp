@@ -207,12 +207,7 @@ TEST(Erpt, SameImageForAnyThreadCount) {
   const RgbImage a = renderErptImage(scene, r);
   r.threads = 2;
   const RgbImage b = renderErptImage(scene, r);
-  ASSERT_EQ(a.pixels.size(), b.pixels.size());
-  for (size_t i = 0; i < a.pixels.size(); ++i) {
-    ASSERT_EQ(a.pixels[i].x, b.pixels[i].x) << i;
-    ASSERT_EQ(a.pixels[i].y, b.pixels[i].y) << i;
-    ASSERT_EQ(a.pixels[i].z, b.pixels[i].z) << i;
-  }
+  test::expectBitIdentical(a, b);
 }
 
 }  // namespace

@@ -48,8 +48,8 @@ size_t ChainQueues::loadSeeds(const ErptWorld& w, uint32_t chainLength, float en
   return slot;
 }
 
-void ChainQueues::propose(const ErptWorld& world, const ErptStepContext& ctx) {
-  ChainStep{*world.tracer, ctx}.propose(*this);
+void ChainQueues::propose(const ErptWorld& world, const ErptStepContext& ctx, const MutationChooser* chooser) {
+  ChainStep{*world.tracer, ctx, nullptr, 256, chooser}.propose(*this);
 }
 
 }  // namespace erpt::test

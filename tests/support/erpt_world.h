@@ -41,7 +41,8 @@ struct ChainQueues : ErptQueues {
   size_t loadSeeds(const ErptWorld& world, uint32_t chainLength, float energyPerStep, uint64_t keySeed,
                    size_t stride = 1);
   // ChainStep::propose: mutate -> (intersect -> trace)* -> connect; stops before accept.
-  void propose(const ErptWorld& world, const ErptStepContext& ctx);
+  // `chooser`: the mutate stage's choice (null: ERPT's).
+  void propose(const ErptWorld& world, const ErptStepContext& ctx, const MutationChooser* chooser = nullptr);
 };
 
 }  // namespace erpt::test

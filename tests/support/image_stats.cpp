@@ -1,5 +1,7 @@
 #include "support/image_stats.h"
 
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <stdexcept>
 
@@ -57,6 +59,16 @@ BlockZScores blockZScores(const std::vector<RgbImage>& a, const std::vector<RgbI
   }
   if (!out.z.empty()) out.meanSquare /= double(out.z.size());
   return out;
+}
+
+void expectBitIdentical(const RgbImage& a, const RgbImage& b) {
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.pixels.size(), b.pixels.size());
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    ASSERT_EQ(a.pixels[i].x, b.pixels[i].x) << "pixel " << i;
+    ASSERT_EQ(a.pixels[i].y, b.pixels[i].y) << "pixel " << i;
+    ASSERT_EQ(a.pixels[i].z, b.pixels[i].z) << "pixel " << i;
+  }
 }
 
 }  // namespace erpt::test

@@ -21,6 +21,9 @@ struct BlockZScores {
   double meanSquare = 0;  // mean of z^2
   double worst = 0;       // max |z|
 };
+// Same size and every channel of every pixel equal, bit for bit (gtest failures otherwise).
+void expectBitIdentical(const RgbImage& a, const RgbImage& b);
+
 BlockZScores blockZScores(const std::vector<RgbImage>& a, const std::vector<RgbImage>& b, int block);
 
 }  // namespace erpt::test

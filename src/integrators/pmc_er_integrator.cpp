@@ -1,0 +1,104 @@
+// `--integrator pmc-er`: population Monte Carlo energy redistribution (Lai, Fan, Chenney,
+// Dyer), made unbiased as docs/pmc-er.md derives.
+//
+//   1. Pilot pass (as ERPT's, own stream): E_total, for e_d of eq. 4 (reported; the flow
+//      rule itself deposits a fixed share of each member's energy per iteration).
+//   2. Region adaptation only: a training population (own stream, own pool, uniform weights,
+//      deposits nothing) learns the table of mixture weights per image region; the table is
+//      then frozen, so the main population's kernel is a fixed function of the path.
+//   3. The population (pmc_population.h) runs over the stratified pool of the render's
+//      width x height x spp positions; pixel value = sum of deposits / spp.
+//   4. As ERPT: the direct-lighting pass for one-bounce paths (--direct-samples), filters.
+#include "pmc_er_integrator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "erpt/pmc_mixture.h"
+#include "erpt/rng.h"
+#include "erpt/stratified_pool.h"
+#include "erpt_integrator.h"
+#include "pmc_population.h"
+#include "render_setup.h"
+
+namespace erpt {
+
+namespace {
+constexpr uint64_t kPoolStream = 0x706f6f6cull, kTrainStream = 0x747261696eull;
+}  // namespace
+
+void validatePmcSettings(const PmcSettings& p, const ErptSettings& e) {
+  validateErptSettings(e);
+  if (p.population < 1 || p.population > 10000000) throw UsageError("--population must be in [1, 10000000]");
+  if (p.mutationsPerMember < 1 || p.mutationsPerMember > 1000000)
+    throw UsageError("--mutations-per-member must be in [1, 1000000]");
+  if (p.radii.empty() || p.radii.size() > size_t(kMaxPmcRadii))
+    throw UsageError("--radii takes 1 to " + std::to_string(kMaxPmcRadii) + " radii");
+  for (float r : p.radii)
+    if (!(r > 0) || !(r <= 1e4f)) throw UsageError("--radii: every radius must be in (0, 10000] pixels");
+  if (!(p.resampleRate > 0) || !(p.resampleRate <= 1)) throw UsageError("--resample-rate must be in (0, 1]");
+  if (!(p.alphaFloor >= 0) || !(p.alphaFloor * float(p.radii.size()) < 1))
+    throw UsageError("--alpha-floor must be in [0, 1 / (number of radii))");
+  if (!(p.causticProb >= 0) || !(p.causticProb <= 1)) throw UsageError("--caustic-prob must be in [0, 1]");
+  if (p.regionSize < 1 || p.regionSize > 65536) throw UsageError("--pmc-region must be in [1, 65536] pixels");
+  if (p.trainIterations < 1 || p.trainIterations > 100000) throw UsageError("--pmc-train-iterations must be in [1, 100000]");
+  if (e.maxConsecutive > 0 && p.flow == PmcFlow::Balance)
+    throw UsageError("--max-consecutive needs moving chains: it does not apply to --pmc-flow balance");
+}
+
+RgbImage renderPmcEr(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+  const PmcSettings& p = s.pmc;
+  validatePmcSettings(p, s.erpt);
+  ErptStats& es = stats.erpt;
+  PmcStats& ps = stats.pmc;
+  es.pilotEnergy = s.erpt.knownPilotEnergy >= 0 ? s.erpt.knownPilotEnergy : erptPilotEnergy(scene, s, stats);
+
+  RenderSetup setup(scene, s);
+  FilmDensity density(setup.filter, s.width, s.height);
+  // The chain step's view of the kernel: the disk lens and Veach caustic units (sizes from
+  // the mixture), the families the path allows (Mixed's), detailed-balance deposits for Balance.
+  ErptSettings chain = s.erpt;
+  chain.strategy = MutationStrategy::Mixed;
+  chain.lensShape = LensShape::Disk;
+  chain.causticAngle = CausticAngle::Veach;
+  chain.flow = p.flow == PmcFlow::Balance ? FlowRule::DetailedBalance : FlowRule::EqualDeposition;
+  const ErptStepContext ctx{MeasureContext{scene, setup.lights, setup.camera, density}, chain};
+  const uint32_t pixels = uint32_t(s.width) * uint32_t(s.height);
+  PmcMixture mixture(p, s.width, s.height);
+
+  if (p.adapt == PmcAdapt::Region) {
+    // Training: independent of the render (own seed, own pool), so the frozen table is too.
+    RenderSettings ts = s;
+    ts.seed = streamKey(s.seed, kTrainStream, 0);
+    const double positions = double(p.population) * (1.0 + p.trainIterations * p.resampleRate);
+    ts.spp = int(std::clamp(std::ceil(positions / pixels), 1.0, double(1 << 20)));
+    ts.progress = nullptr;
+    RenderSetup trainSetup(scene, ts);
+    PmcSettings tp = p;
+    tp.adapt = PmcAdapt::Off;
+    PmcMixture uniform(tp, s.width, s.height);
+    RenderStats trainStats;
+    PmcPopulation trainer(trainSetup, PmcPopulation::Config{ctx, tp, ts.seed, nullptr}, uniform, trainStats);
+    trainer.run(StratifiedPool{pixels, uint32_t(ts.spp), ts.seed}, p.trainIterations);
+    mixture.setRegionTable(trainer.regionSums(), 1.0);
+    ps.trainingIterations = trainStats.pmc.trainingIterations;
+    ps.trainSeconds = trainStats.pmc.trainSeconds + trainStats.pmc.regenerateSeconds + trainStats.pmc.resampleSeconds;
+    stats.rays += trainStats.rays;
+    for (int r = 0; r < mixture.regionCount(); ++r)
+      for (int k = 0; k < mixture.components(); ++k)
+        ++ps.alphaHistogram[k][std::min(kAlphaBins - 1, int(mixture.regionTable()[size_t(r * mixture.components() + k)] * kAlphaBins))];
+  }
+
+  PmcPopulation population(setup, PmcPopulation::Config{ctx, p, s.seed, &setup.film}, mixture, stats);
+  population.run(StratifiedPool{pixels, uint32_t(s.spp), streamKey(s.seed, kPoolStream, 0)}, -1, s.progress);
+  es.erptSeconds = ps.chainSeconds + ps.resampleSeconds;
+  // Eq. 4 with the iterations the pool took: what each step would deposit if all were equal.
+  const double steps = double(ps.iterations) * double(p.population) * double(p.mutationsPerMember);
+  ps.depositEnergy = steps > 0 ? es.pilotEnergy * double(pixels) * double(s.spp) / steps : 0;
+  es.depositEnergy = ps.depositEnergy;
+  stats.extraImages.emplace_back("strategy", population.strategyImage());
+  return finishRedistribution(scene, s, stats, setup.film.resolve(double(s.spp)),
+                              s.erpt.pmFilterRadius >= 0 ? &population.proposalTally() : nullptr);
+}
+
+}  // namespace erpt

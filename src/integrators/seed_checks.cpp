@@ -1,0 +1,52 @@
+#include "erpt/seed_checks.h"
+
+#include <cmath>
+
+namespace erpt {
+
+bool seedForChains(const SeedStore& store, size_t i, bool excludeDirect) {
+  // Eye, one surface vertex, light: a one-bounce path (two vertices: an emitter seen directly).
+  return !excludeDirect || store.seeds.vertexCount[i] > 3;
+}
+
+InPlaceReason seedSignatureReason(const ErptStepContext& ctx, const SeedStore& store, size_t i) {
+  const uint32_t n = store.seeds.vertexCount[i];
+  if (n > uint32_t(kMaxChainVertices)) return kInPlaceTooLong;
+  uint8_t kinds[kMaxChainVertices];
+  for (uint32_t j = 0; j < n; ++j) kinds[j] = store.vertices.kind[store.seeds.vertexBegin[i] + j];
+  // Both choices of the `Mixed` coin.
+  const MutationStrategy s = ctx.settings.strategy;
+  const bool none = chooseMutation(s, kinds, int(n), 0.0f) == MutationKind::None &&
+                    chooseMutation(s, kinds, int(n), 0.999f) == MutationKind::None;
+  return none ? kInPlaceNoMutation : kInPlaceReasonCount;
+}
+
+bool seedHasZeroContribution(const ErptStepContext& ctx, const SeedStore& store, size_t i) {
+  const uint32_t n = store.seeds.vertexCount[i];  // at most kMaxChainVertices (seedSignatureReason)
+  PathVertex path[kMaxChainVertices];
+  uint8_t kinds[kMaxChainVertices];
+  for (uint32_t j = 0; j < n; ++j) {
+    loadPathVertex(store.vertices, store.seeds.vertexBegin[i] + j, path[j]);
+    kinds[j] = path[j].kind;
+  }
+  // Every mutation the strategy may pick for this signature (the choice depends on the
+  // signature only, which mutations preserve) must see a path of positive, finite f.
+  for (float u : {0.0f, 0.999f}) {
+    const MutationKind family = chooseMutation(ctx.settings.strategy, kinds, int(n), u);
+    if (family == MutationKind::None) continue;
+    const MutationKind kind = family == MutationKind::Lens ? ctx.lensKind() : ctx.causticKind();
+    const float f =
+        luminance(contributionFor(kind, ctx.measure, path, int(n), store.seeds.filmX[i], store.seeds.filmY[i]));
+    if (!(f > 0) || !std::isfinite(f)) return true;
+  }
+  return false;
+}
+
+double depositSeedInPlace(const FilmDensity& density, const SeedStore& store, size_t seed, double energy, Film& film) {
+  const Color c = store.contribution(seed);
+  const Color deposit = c * float(energy / double(luminance(c)));
+  density.splat(store.seeds.filmX[seed], store.seeds.filmY[seed], [&](uint32_t pixel, float w) { film.add(pixel, deposit * w); });
+  return luminance(deposit);
+}
+
+}  // namespace erpt
