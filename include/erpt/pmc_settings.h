@@ -44,10 +44,11 @@ struct PmcStats {
   uint64_t poolSize = 0, poolUsed = 0;    // stratified film positions: all, and traced
   uint64_t candidates = 0;                // pool positions that gave a member candidate
   uint64_t inPlaceSeeds = 0;              // seeds no mutation can move, deposited where they are
-  uint64_t membersBorn = 0, eliminated = 0, split = 0;  // resampling: new members, members dropped, copies made
+  uint64_t membersBorn = 0, eliminated = 0, split = 0;  // resampling: candidates that became members, members dropped, extra copies
   double energyRegenerated = 0;           // energy the candidates brought (luminance)
   double energyEliminated = 0;            // remaining energy of dropped members (made up by the survivors)
   double energyFinal = 0;                 // deposited where the members stood when the render ended
+  uint64_t steps = 0;                     // member steps (mutations) of the render, N_mutations
   double depositEnergy = 0;               // e_d of eq. 4 from the pilot: E_total / N_mutations
   double meanDeposit = 0;                 // what a step deposited on average (luminance)
   int radiusCount = 0;

@@ -92,8 +92,8 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& s, RenderStats& s
   PmcPopulation population(setup, PmcPopulation::Config{ctx, p, s.seed, &setup.film}, mixture, stats);
   population.run(StratifiedPool{pixels, uint32_t(s.spp), streamKey(s.seed, kPoolStream, 0)}, -1, s.progress);
   es.erptSeconds = ps.chainSeconds + ps.resampleSeconds;
-  // Eq. 4 with the iterations the pool took: what each step would deposit if all were equal.
-  const double steps = double(ps.iterations) * double(p.population) * double(p.mutationsPerMember);
+  // Eq. 4 with the steps the render took: what each would deposit if all were equal.
+  const double steps = double(ps.steps);
   ps.depositEnergy = steps > 0 ? es.pilotEnergy * double(pixels) * double(s.spp) / steps : 0;
   es.depositEnergy = ps.depositEnergy;
   stats.extraImages.emplace_back("strategy", population.strategyImage());

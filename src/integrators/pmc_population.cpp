@@ -73,8 +73,9 @@ void PmcPopulation::run(const StratifiedPool& pool, int maxIterations, const std
   const size_t perIteration = std::max<size_t>(1, size_t(std::llround(s.resampleRate * double(slots()))));
   const int drain = drainIterations(s.resampleRate);
   regenerate(pool, std::min(slots(), pool.size()));
-  resample(0);
+  resample(0, slots());
   int drained = 0;
+  size_t members = slots();
   for (uint64_t it = 1;; ++it) {
     iterate();
     if (maxIterations >= 0 && it >= uint64_t(maxIterations)) break;
@@ -83,13 +84,17 @@ void PmcPopulation::run(const StratifiedPool& pool, int maxIterations, const std
     } else if (drained++ >= drain) {
       break;
     } else {
+      // Draining: no new members, so the population shrinks with its energy (each member
+      // keeps about the energy it had, and the work per iteration falls by 1 - r).
       ++pmc_.drainIterations;
+      members = std::max<size_t>(1, size_t(std::ceil(double(members) * (1 - s.resampleRate))));
     }
-    resample(it);
+    resample(it, members);
     if (progress) progress(double(poolCursor_) / double(std::max<size_t>(1, pool.size())));
   }
   if (config_.film) depositRemaining();
   pmc_.meanDeposit = depositSteps_ > 0 ? depositSum_ / double(depositSteps_) : 0;
+  if (config_.film) pmc_.steps += depositSteps_;
   for (int k = 0; k < kMutationKindCount; ++k) {
     stats_.erpt.proposed[k] = counters_.proposed[k];
     stats_.erpt.accepted[k] = counters_.accepted[k];
@@ -179,16 +184,17 @@ void PmcPopulation::absorb(SeedStore& batch, size_t firstPoolIndex) {
   }
 }
 
-void PmcPopulation::resample(uint64_t iteration) {
+void PmcPopulation::resample(uint64_t iteration, size_t members) {
   const auto start = std::chrono::steady_clock::now();
   const size_t n = slots(), k = size_t(components_);
+  members = std::min(members, n);
   std::vector<double> weights(energy_);
   weights.insert(weights.end(), candidateEnergy_.begin(), candidateEnergy_.end());
   double total = 0;
   for (double w : weights) total += w;
   const double u = double(uniformFloat(streamKey(config_.seed, kCombStream, iteration), 0));
-  const std::vector<uint32_t> counts = systematicCounts(weights, n, u);
-  const double tau = total / double(n);
+  const std::vector<uint32_t> counts = systematicCounts(weights, members, u);
+  const double tau = total / double(members);
   std::vector<double> energy(n, 0.0), alphaSum(n * k, 0.0);
   size_t slot = 0;
   for (size_t i = 0; i < n; ++i) {
@@ -214,6 +220,7 @@ void PmcPopulation::resample(uint64_t iteration) {
     pmc_.energyRegenerated += candidateEnergy_[j];
     const uint32_t copies = counts[n + j];
     pmc_.membersBorn += copies > 0;
+    pmc_.split += copies > 1 ? copies - 1 : 0;
     for (uint32_t c = 0; c < copies; ++c, ++slot) {
       loadChainFromSeed(spareChains_, spareVertices_, slot, candidates_, j,
                         streamKey(config_.seed, kMemberStream, chainCounter_++), 0, 0);

@@ -6,8 +6,9 @@
 //   the next r * population positions of the stratified pool are traced by the wavefront path
 //   tracer (one batch) and become candidates;
 //   members and candidates are resampled by energy into the slots (pmc_resampling.h).
-// When the pool is used up the population drains for a few iterations without new members,
-// then every member deposits what it still holds where it stands.
+// When the pool is used up the population drains for a few iterations without new members
+// (resampled into fewer slots each time, as its energy falls), then every member deposits
+// what it still holds where it stands.
 #pragma once
 
 #include <functional>
@@ -51,7 +52,8 @@ class PmcPopulation {
   size_t slots() const { return q_.chains.size(); }
   void regenerate(const StratifiedPool& pool, size_t count);
   void absorb(SeedStore& batch, size_t firstPoolIndex);
-  void resample(uint64_t iteration);
+  // Members and candidates by energy into the first `members` slots (the rest stay free).
+  void resample(uint64_t iteration, size_t members);
   void iterate();
   void collect(const std::vector<float>& fromX, const std::vector<float>& fromY);
   void depositRemaining();

@@ -61,6 +61,7 @@ void addPmcStats(PmcStats& to, const PmcStats& from) {
   to.energyRegenerated += from.energyRegenerated;
   to.energyEliminated += from.energyEliminated;
   to.energyFinal += from.energyFinal;
+  to.steps += from.steps;
   to.depositEnergy = from.depositEnergy;
   to.meanDeposit = from.meanDeposit;
   to.radiusCount = from.radiusCount;
