@@ -8,8 +8,8 @@ bash scripts/build.sh
 if [ "${1:-}" != "--release-only" ]; then
   bash scripts/build.sh --sanitize
   # Leaks are checked too; tests/lsan.supp lists the third-party ones we cannot fix. ERPT's
-  # long statistical renders run in the Release suite only (their code paths are covered by
-  # the ERPT stage, measure and determinism tests here, which run in seconds).
+  # and PMC-ER's long statistical renders run in the Release suite only (their code paths
+  # are covered by the stage, measure, determinism and CLI tests here, which run in seconds).
   (cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions="$PWD/../tests/lsan.supp" \
-    ctest --output-on-failure -j2 -E '^StatisticalErpt\.')
+    ctest --output-on-failure -j2 -E '^Statistical(Erpt|Pmc)\.')
 fi

@@ -125,7 +125,7 @@ TEST(ErptPerturbationDensity, LensSquareIsUniform) { checkLens(LensShape::Square
 TEST(ErptPerturbationDensity, LensDiskIsUniform) { checkLens(LensShape::Disk); }
 TEST(ErptPerturbationDensity, CausticErptAngleHasDensityOneOverTheta) { checkCaustic(CausticAngle::Erpt); }
 TEST(ErptPerturbationDensity, CausticVeachAngleIsUniformUpToThetaMax) { checkCaustic(CausticAngle::Veach); }
-// A move of 400 pixels asks for theta_max beyond pi (measured: eq. 6 gives ~4 rad here): the
+// A move of 400 pixels asks eq. 6 for a theta_max beyond pi on this path: the
 // angle range must stop at pi, where the directions have covered the sphere, or theta wraps
 // around and the stated density is wrong (PMC-ER's 50-pixel radius reached it on the 64x64
 // plastic box: energy moved between regions, mean z^2 3.4 per 8x8 block, before the clamp).
