@@ -7,9 +7,9 @@ bash scripts/build.sh
 (cd build && ctest --output-on-failure -j2)
 if [ "${1:-}" != "--release-only" ]; then
   bash scripts/build.sh --sanitize
-  # Leaks are checked too; tests/lsan.supp lists the third-party ones we cannot fix. ERPT's
-  # and PMC-ER's long statistical renders run in the Release suite only (their code paths
-  # are covered by the stage, measure, determinism and CLI tests here, which run in seconds).
+  # Leaks are checked too; tests/lsan.supp lists the third-party ones we cannot fix. The long
+  # statistical renders of ERPT, PMC-ER and the splatting films run in the Release suite only
+  # (their code paths are covered by the stage, measure, determinism and CLI tests here).
   (cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions="$PWD/../tests/lsan.supp" \
-    ctest --output-on-failure -j2 -E '^Statistical(Erpt|Pmc)\.')
+    ctest --output-on-failure -j2 -E '^Statistical(Erpt|Pmc|Film)\.')
 fi

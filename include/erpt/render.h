@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "erpt/erpt_settings.h"
+#include "erpt/film_splat.h"
 #include "erpt/image_io.h"
 #include "erpt/parallel.h"
 #include "erpt/pmc_settings.h"
@@ -28,6 +29,8 @@ struct RenderSettings {
   int threads = 0;            // 0: all hardware threads
   bool filterSet = false;     // false: the scene's rfilter
   FilterKind filter = FilterKind::Box;
+  // The path tracer's film (film_splat.h): Auto picks per filter. ERPT and PMC-ER use Fis.
+  FilmMode film = FilmMode::Auto;
   std::function<void(double fraction)> progress;  // called from the rendering thread
   SeedStore* seeds = nullptr;  // path tracer: when set, every contribution is recorded as a seed
   // Path tracer with `seeds` set: called after every batch with that batch's seeds, which are

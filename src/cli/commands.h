@@ -15,7 +15,7 @@ class App;
 namespace erpt::cli {
 
 struct RenderArgs {
-  std::string scene, output, integrator, filter;
+  std::string scene, output, integrator, filter, film = "auto";
   int spp = 0, width = 0, height = 0, threads = 0, maxDepth = -2;
   unsigned long long seed = 0;
   std::vector<std::string> defines;

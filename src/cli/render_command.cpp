@@ -33,6 +33,8 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
       ->check(CLI::Range(-1, 100000));
   cmd->add_option("--filter", a.filter, "Pixel filter: box, tent or gaussian (default: the scene's rfilter)")
       ->check(CLI::IsMember({"box", "tent", "gaussian"}));
+  cmd->add_option("--film", a.film, "Path tracer's film: fis (filter importance sampling: each sample counts in its own pixel), splat (samples uniform in the pixel, splatted over the filter, normalized by the weights: Mitsuba's and pbrt-v3's), splat-unbiased (normalized by the expected weights) or auto (default: per filter, see README)")
+      ->check(CLI::IsMember({"auto", "fis", "splat", "splat-unbiased"}));
   cmd->add_option("-D,--define", a.defines, "Override a scene <default>: -D name=value (repeatable)");
   cmd->add_flag("-q,--quiet", a.quiet, "No progress output");
   ErptSettings& e = a.erpt;
@@ -152,6 +154,8 @@ RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
   s.pmc.flow = a.pmcFlow == "balance" ? PmcFlow::Balance : PmcFlow::EqualDeposition;
   s.pmc.adapt = a.pmcAdapt == "member" ? PmcAdapt::Member : a.pmcAdapt == "off" ? PmcAdapt::Off : PmcAdapt::Region;
   s.pmc.radii = parseRadii(a.radii);
+  s.film = a.film == "fis" ? FilmMode::Fis : a.film == "splat" ? FilmMode::Splat
+          : a.film == "splat-unbiased" ? FilmMode::SplatUnbiased : FilmMode::Auto;
   s.timeBudget = a.time;
   if (!a.filter.empty()) {
     s.filterSet = true;

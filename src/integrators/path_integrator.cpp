@@ -9,6 +9,7 @@
 #include <chrono>
 
 #include "erpt/film.h"
+#include "erpt/film_splat.h"
 #include "erpt/stages.h"
 #include "erpt/tracer.h"
 #include "path_integrator.h"
@@ -114,6 +115,12 @@ void tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
       invalid += !isFinite(L);
       if (out.film) out.film->addIfFinite(paths.pixel[i], L);
     }
+    if (out.splat) {
+      auto start = std::chrono::steady_clock::now();
+      out.splat->addSamples(paths.filmX.data(), paths.filmY.data(), paths.radianceR.data(), paths.radianceG.data(),
+                            paths.radianceB.data(), n);
+      stats.stages.add("splat", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    }
     if (recording && out.seedSink) {
       out.seedSink(*out.seeds);
       out.seeds->clear();
@@ -134,7 +141,13 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
                                 pixel = order[k / spp];
                                 sample = uint32_t(k % spp);
                               }};
-  tracePathSamples(setup, samples, PathTraceOutput{&setup.film, settings.seeds, settings.seedSink, settings.progress},
+  if (setup.filmMode != FilmMode::Fis) {
+    SplatFilm splat(setup.filter, settings.width, settings.height);
+    PathTraceOutput out{nullptr, &splat, settings.seeds, settings.seedSink, settings.progress};
+    tracePathSamples(setup, samples, out, stats);
+    return splat.resolve(setup.filmMode, double(spp));
+  }
+  tracePathSamples(setup, samples, PathTraceOutput{&setup.film, nullptr, settings.seeds, settings.seedSink, settings.progress},
                    stats);
   return setup.film.resolve(double(spp));
 }

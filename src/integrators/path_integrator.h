@@ -8,6 +8,7 @@ namespace erpt {
 
 struct RenderSetup;
 class Film;
+class SplatFilm;
 
 // `settings` must be resolved (resolveSettings).
 RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
@@ -23,6 +24,7 @@ struct PathSampleSet {
 // `seeds` (when set; with `seedSink`, streamed batch by batch and cleared).
 struct PathTraceOutput {
   Film* film = nullptr;
+  SplatFilm* splat = nullptr;  // instead of `film`: every sample splatted over its filter
   SeedStore* seeds = nullptr;
   std::function<void(SeedStore&)> seedSink;
   std::function<void(double fraction)> progress;

@@ -102,6 +102,9 @@ TEST(Path, MaxDepthOneSeesOnlyEmitters) {
   s.spp = 1;
   s.width = s.height = 32;
   s.maxDepth = 1;
+  // One sample per pixel, each counted in its own pixel only (a splatting film would blend
+  // the light's edge into its neighbours).
+  s.film = FilmMode::Fis;
   RenderStats stats;
   RgbImage img = render(scene, s, stats);
   int lit = 0;
