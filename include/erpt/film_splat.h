@@ -28,9 +28,9 @@ FilmMode filmModeFor(FilmMode requested, FilterKind filter);
 class SplatFilm {
  public:
   SplatFilm(const PixelFilter& filter, int width, int height);
-  // Adds samples [0, n): film positions and radiance columns. Non-finite radiance is dropped;
-  // returns how many were.
-  uint64_t addSamples(const float* x, const float* y, const float* r, const float* g, const float* b, size_t n);
+  // Adds samples [0, n): film positions and radiance columns. Non-finite radiance is dropped
+  // (the path tracer counts it).
+  void addSamples(const float* x, const float* y, const float* r, const float* g, const float* b, size_t n);
   RgbImage resolve(FilmMode mode, double samplesPerPixel) const;
 
  private:

@@ -29,7 +29,6 @@ void reach(float x, float r, int size, int& lo, int& hi) {
 struct Buffer {
   int x0 = 0, y0 = 0, w = 0, h = 0;
   std::vector<double> v;  // r, g, b, weight per pixel
-  uint64_t invalid = 0;
 };
 }  // namespace
 
@@ -68,7 +67,7 @@ SplatFilm::SplatFilm(const PixelFilter& filter, int width, int height)
   insideY_ = inside(height);
 }
 
-uint64_t SplatFilm::addSamples(const float* x, const float* y, const float* r, const float* g, const float* b, size_t n) {
+void SplatFilm::addSamples(const float* x, const float* y, const float* r, const float* g, const float* b, size_t n) {
   const size_t chunks = (n + kChunk - 1) / kChunk;
   std::vector<Buffer> buffers(chunks);
   const float radius = filter_.radius();
@@ -88,10 +87,7 @@ uint64_t SplatFilm::addSamples(const float* x, const float* y, const float* r, c
       buf.x0 = xlo, buf.y0 = ylo, buf.w = xhi - xlo + 1, buf.h = yhi - ylo + 1;
       buf.v.assign(size_t(buf.w) * size_t(buf.h) * 4, 0.0);
       for (size_t i = begin; i < end; ++i) {
-        if (!std::isfinite(r[i]) || !std::isfinite(g[i]) || !std::isfinite(b[i])) {
-          ++buf.invalid;
-          continue;
-        }
+        if (!std::isfinite(r[i]) || !std::isfinite(g[i]) || !std::isfinite(b[i])) continue;
         int px0, px1, py0, py1;
         reach(x[i], radius, width_, px0, px1);
         reach(y[i], radius, height_, py0, py1);
@@ -108,9 +104,7 @@ uint64_t SplatFilm::addSamples(const float* x, const float* y, const float* r, c
       }
     }
   });
-  uint64_t invalid = 0;
   for (const Buffer& buf : buffers) {  // chunk order
-    invalid += buf.invalid;
     for (int j = 0; j < buf.h; ++j)
       for (int i = 0; i < buf.w; ++i) {
         const double* v = &buf.v[(size_t(j) * size_t(buf.w) + size_t(i)) * 4];
@@ -119,7 +113,6 @@ uint64_t SplatFilm::addSamples(const float* x, const float* y, const float* r, c
         weight_[p] += v[3];
       }
   }
-  return invalid;
 }
 
 RgbImage SplatFilm::resolve(FilmMode mode, double spp) const {
