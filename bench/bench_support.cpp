@@ -29,7 +29,7 @@ struct AreaSampler {
     t = std::min<uint32_t>(t, uint32_t(cdf.size() - 1));
     float b1, b2;
     squareToTriangle(u1, u2, b1, b2);
-    return surfaceAt(mesh, t, b1, b2);
+    return triangleSurfaceAt(mesh, t, b1, b2);
   }
 };
 }  // namespace

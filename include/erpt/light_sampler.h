@@ -1,13 +1,17 @@
-// Chooses emitters by power and points on them uniformly by area (ERPT's path-density
-// rule 4 assumes uniform-by-area light sampling). An emissive triangle's power is
+// Chooses emitters by power, then a point on the chosen one. Triangles: uniformly by area.
+// Spheres seen from outside: uniformly in the cone of directions the sphere subtends (the
+// visible cap only, never the hidden half), otherwise (a reference point inside, or a sphere
+// that emits inwards) uniformly by area. An emissive primitive's power is
 // pi * area * lum(radiance), so within one uniformly bright area light the choice is
 // uniform by area; point lights weigh 4 pi lum(intensity); the constant environment weighs
 // 4 pi^2 R^2 lum(radiance) for the scene's bounding radius R (pbrt's estimate).
+// ERPT never samples lights after the seed pass (its mutations keep the light vertex or trace
+// towards it), so the choice of technique here only changes the seeds' variance.
 #pragma once
 
 #include <vector>
 
-#include "erpt/scene.h"
+#include "erpt/surface.h"
 
 namespace erpt {
 
@@ -31,29 +35,37 @@ class LightSampler {
   bool empty() const { return cdf_.empty(); }
   // Samples a light as seen from `ref`; false if the sample carries nothing.
   bool sample(Vec3 ref, float uPick, float u1, float u2, LightSample& out) const;
-  // Solid-angle pdf that sample() picks point `p` (normal `n`) on emissive triangle `tri`
-  // from `ref`.
-  float pdfTriangle(uint32_t tri, Vec3 ref, Vec3 p, Vec3 n) const;
+  // Solid-angle pdf at `ref` that sample() picks the surface point `light` (a ray from ref
+  // hit it).
+  float pdfSolidAngle(const SurfacePoint& light, Vec3 ref) const;
   float pdfEnvironment() const;
-  // Area-measure density of next-event estimation picking a point on triangle `tri`
-  // (p_light * p_area); for a point light, the probability of picking it.
-  float pdfAreaTriangle(uint32_t tri) const;
+  // Area-measure density at point p (normal n) of `primitive` of sample() from `ref`
+  // (p_light * p_area).
+  float pdfArea(uint32_t primitive, Vec3 ref, Vec3 p, Vec3 n) const;
   float pickProbabilityOfEmitter(int emitter) const;
-  // Radiance an area light emits from triangle `tri` towards direction `w` (one-sided).
-  Color emitted(uint32_t tri, Vec3 w) const;
+  // Radiance an area light emits from surface point `sp` towards direction `w` (one-sided:
+  // along the geometric normal's side).
+  Color emitted(const SurfacePoint& sp, Vec3 w) const;
   const Scene& scene() const { return scene_; }
 
  private:
-  enum class Kind { Triangle, Point, Environment };
+  enum class Kind { Triangle, Sphere, Point, Environment };
   struct Item {
     Kind kind;
-    uint32_t index;  // triangle index or emitter index
+    uint32_t index;  // primitive id (triangles, spheres) or emitter index
     float area;
   };
+  // 1 - cos of the half-angle of the cone sphere `sphere` subtends at `ref`, when sample()
+  // samples that cone from there; 0 when it samples the sphere by area instead.
+  float sphereCone(uint32_t sphere, Vec3 ref) const;
+  bool sampleTriangle(const Item& item, float prob, Vec3 ref, float u1, float u2, LightSample& out) const;
+  bool sampleSphere(const Item& item, float prob, Vec3 ref, float u1, float u2, LightSample& out) const;
+  // Finishes an area-measure sample at point p, normal n of `primitive`.
+  bool finishAreaSample(uint32_t primitive, float pdfArea, Vec3 ref, Vec3 p, Vec3 n, LightSample& out) const;
   const Scene& scene_;
   std::vector<Item> items_;
   std::vector<float> cdf_;  // normalized, cdf_.back() == 1
-  std::vector<float> triangleProbability_;  // per scene triangle (0 if not emissive)
+  std::vector<float> primitiveProbability_;  // per primitive id (0 if not emissive)
   std::vector<float> emitterProbability_;   // per point / environment emitter
   float environmentProbability_ = 0;
   float sceneRadius_ = 1;

@@ -22,9 +22,9 @@
 // Closest-hit results (RTCHitNp).
 #define ERPT_HIT_FIELDS(F, V, C)                                                                    \
   V(ng, "Embree's unnormalized geometric normal")                                                   \
-  F(float, u, {}, "barycentric coordinate of vertex 1")                                             \
-  F(float, v, {}, "barycentric coordinate of vertex 2")                                             \
-  F(unsigned, primID, {}, "triangle index into Scene::mesh")                                        \
+  F(float, u, {}, "triangle: barycentric of vertex 1; sphere: u")                                   \
+  F(float, v, {}, "triangle: barycentric of vertex 2; sphere: v")                                   \
+  F(unsigned, primID, {}, "primitive id (scene.h: triangles, then spheres)")                        \
   F(unsigned, geomID, {}, "RTC_INVALID_GEOMETRY_ID on a miss")                                      \
   F(unsigned, instID, {}, "instance id (unused)")
 

@@ -1,6 +1,10 @@
 // A loaded scene in the renderer's own layout: one world-space triangle soup stored as
 // structure-of-arrays columns (positions, shading normals, uvs per vertex; indices, material,
-// emitter and shape per triangle), plus materials, textures, emitters, camera and film.
+// emitter and shape per triangle), exact spheres in columns of their own, plus materials,
+// textures, emitters, camera and film.
+//
+// Primitive ids: every hit and every surface point names one primitive of one id space,
+// triangles first (0 .. triangleCount - 1), then spheres (triangleCount + sphere index).
 #pragma once
 
 #include <cstdint>
@@ -36,11 +40,26 @@ struct TriangleSoup {
   }
 };
 
+// Exact spheres (Mitsuba's `sphere` shape), one row each. The frame orients the sphere's own
+// coordinates (texture u from the azimuth around frame.n, v from the polar angle), as the
+// shape's to_world rotates them.
+struct SphereSet {
+  std::vector<float> cx, cy, cz, radius;
+  std::vector<Frame> frame;
+  std::vector<int32_t> material, emitter, shape;
+  std::vector<uint8_t> flipped;  // 1: normals (and emission) point inwards
+
+  size_t count() const { return radius.size(); }
+  Vec3 center(uint32_t i) const { return {cx[i], cy[i], cz[i]}; }
+  float area(uint32_t i) const { return 4 * kPi * radius[i] * radius[i]; }
+};
+
 struct ShapeInfo {
   std::string type;  // obj, ply, rectangle, ...
   std::string id;
   SourceLocation where;
   uint32_t firstTriangle = 0, triangleCount = 0;
+  int sphere = -1;  // index into Scene::spheres when the shape is an exact sphere
 };
 
 enum class EmitterKind { Area, Point, Constant };
@@ -77,6 +96,7 @@ struct IntegratorSettings {
 struct Scene {
   std::string file;
   TriangleSoup mesh;
+  SphereSet spheres;
   std::vector<ShapeInfo> shapes;
   std::vector<Material> materials;
   std::vector<Texture> textures;
@@ -90,6 +110,19 @@ struct Scene {
   // Resolves the (possibly textured) colours of a material at texture coordinates (u, v).
   SurfaceColors surfaceColors(int material, float u, float v) const;
   const Emitter* environment() const;
+
+  // The primitive id space (see the top of this file).
+  size_t primitiveCount() const { return mesh.triangleCount() + spheres.count(); }
+  bool isSphere(uint32_t primitive) const { return primitive >= mesh.triangleCount(); }
+  uint32_t sphereOf(uint32_t primitive) const { return primitive - uint32_t(mesh.triangleCount()); }
+  uint32_t spherePrimitive(uint32_t sphere) const { return uint32_t(mesh.triangleCount()) + sphere; }
+  int emitterOf(uint32_t primitive) const {
+    return isSphere(primitive) ? spheres.emitter[sphereOf(primitive)] : mesh.emitter[primitive];
+  }
+  // Surface area of a primitive.
+  float primitiveArea(uint32_t primitive) const {
+    return isSphere(primitive) ? spheres.area(sphereOf(primitive)) : 0.5f * length(mesh.faceNormal(primitive));
+  }
 };
 
 }  // namespace erpt

@@ -12,6 +12,8 @@ namespace erpt {
 struct LoadOptions {
   // `-D name=value`: overrides the scene's <default> values (and defines new ones).
   std::map<std::string, std::string> defines;
+  // Load `sphere` shapes as triangle meshes (256 x 512) instead of exact spheres.
+  bool tessellateSpheres = false;
 };
 
 // Throws InputError (file:line: cause) on malformed input; warnings land in Scene::warnings.

@@ -1,5 +1,10 @@
-// The local geometry at a ray hit, reconstructed from the scene's SoA mesh columns.
+// The local geometry at a ray hit, reconstructed from the scene's SoA columns: a hit is a
+// primitive id (scene.h) and two coordinates, barycentric for a triangle, the texture
+// coordinates (azimuth / 2 pi, polar angle / pi) for a sphere, so that one (primitive, u, v)
+// triple names a surface point whatever the shape.
 #pragma once
+
+#include <cmath>
 
 #include "erpt/scene.h"
 
@@ -10,12 +15,13 @@ struct SurfacePoint {
   Vec3 geometricNormal;  // unit, from the triangle's winding (emission and flip_normals follow it)
   Frame shading;         // around the interpolated shading normal (or the geometric one)
   float u = 0, v = 0;    // texture coordinates
-  uint32_t triangle = 0;
+  uint32_t primitive = 0;
   int material = 0;
+  int emitter = -1;  // index into Scene::emitters when the primitive emits
 };
 
 // b1, b2: barycentric coordinates of the triangle's second and third vertex (Embree's u, v).
-inline SurfacePoint surfaceAt(const TriangleSoup& m, uint32_t tri, float b1, float b2) {
+inline SurfacePoint triangleSurfaceAt(const TriangleSoup& m, uint32_t tri, float b1, float b2) {
   SurfacePoint s;
   uint32_t i0 = m.v0[tri], i1 = m.v1[tri], i2 = m.v2[tri];
   float b0 = 1 - b1 - b2;
@@ -30,9 +36,60 @@ inline SurfacePoint surfaceAt(const TriangleSoup& m, uint32_t tri, float b1, flo
   s.shading = Frame(n);
   s.u = m.u[i0] * b0 + m.u[i1] * b1 + m.u[i2] * b2;
   s.v = m.v[i0] * b0 + m.v[i1] * b1 + m.v[i2] * b2;
-  s.triangle = tri;
+  s.primitive = tri;
   s.material = m.material[tri];
+  s.emitter = m.emitter[tri];
   return s;
+}
+
+// The sphere coordinates (u, v) of a point near sphere i: its direction from the centre, in
+// the sphere's frame, as Mitsuba's texture coordinates. atan2 for both angles keeps the
+// polar angle accurate near the poles (acos loses half the digits there).
+inline void sphereCoordinates(const SphereSet& s, uint32_t i, Vec3 p, float& u, float& v) {
+  const Vec3 local = s.frame[i].toLocal(p - s.center(i));
+  float phi = std::atan2(local.y, local.x);
+  if (phi < 0) phi += 2 * kPi;
+  u = std::min(phi * (0.5f * kInvPi), 0x1.fffffep-1f);
+  v = std::atan2(std::sqrt(local.x * local.x + local.y * local.y), local.z) * kInvPi;
+}
+
+// The hit distance along o + t d on sphere i nearest to the tracer's estimate t, solved again
+// in double precision with the closest-approach form of the discriminant (r^2 - |f|^2, f the
+// centre's offset from the ray): at grazing angles float solvers lose most digits of t, and a
+// point projected onto the sphere from a wrong t no longer lies on the traced ray.
+inline float refineSphereHit(const SphereSet& s, uint32_t i, Vec3 o, Vec3 d, float t) {
+  const double ox = double(o.x) - s.cx[i], oy = double(o.y) - s.cy[i], oz = double(o.z) - s.cz[i];
+  const double a = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+  const double b = (ox * d.x + oy * d.y + oz * d.z) / a;  // closest approach at t = -b
+  const double fx = ox - b * d.x, fy = oy - b * d.y, fz = oz - b * d.z;
+  const double r = s.radius[i];
+  const double h = std::sqrt(std::max(0.0, (r * r - (fx * fx + fy * fy + fz * fz)) / a));
+  const double near = -b - h, far = -b + h;
+  return float(std::abs(near - t) <= std::abs(far - t) ? near : far);
+}
+
+// The exact surface point of sphere i at sphere coordinates (u, v): position on the sphere,
+// normal along the radius (inwards when flipped).
+inline SurfacePoint sphereSurfaceAt(const SphereSet& s, uint32_t i, uint32_t primitive, float u, float v) {
+  const float phi = u * 2 * kPi, theta = v * kPi;
+  const float sinTheta = std::sin(theta);
+  const Vec3 radial = s.frame[i].toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), std::cos(theta)});
+  SurfacePoint sp;
+  sp.position = s.center(i) + radial * s.radius[i];
+  sp.geometricNormal = s.flipped[i] ? -radial : radial;
+  sp.shading = Frame(sp.geometricNormal);
+  sp.u = u;
+  sp.v = v;
+  sp.primitive = primitive;
+  sp.material = s.material[i];
+  sp.emitter = s.emitter[i];
+  return sp;
+}
+
+// The surface point a hit (primitive, u, v) names.
+inline SurfacePoint surfaceAt(const Scene& scene, uint32_t primitive, float u, float v) {
+  if (scene.isSphere(primitive)) return sphereSurfaceAt(scene.spheres, scene.sphereOf(primitive), primitive, u, v);
+  return triangleSurfaceAt(scene.mesh, primitive, u, v);
 }
 
 // Origin for a ray leaving surface point p towards `dir`: pushed off the surface along the

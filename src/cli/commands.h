@@ -19,7 +19,7 @@ struct RenderArgs {
   int spp = 0, width = 0, height = 0, threads = 0, maxDepth = -2;
   unsigned long long seed = 0;
   std::vector<std::string> defines;
-  bool quiet = false;
+  bool quiet = false, tessellateSpheres = false;
   ErptSettings erpt;
   PmcSettings pmc;
   std::string pmcFlow = "equal-deposition", pmcAdapt = "region", radii = "5,10,50";
@@ -31,6 +31,7 @@ struct RenderArgs {
 struct InfoArgs {
   std::string scene;
   std::vector<std::string> defines;
+  bool tessellateSpheres = false;
 };
 
 struct DiffArgs {

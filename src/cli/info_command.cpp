@@ -11,6 +11,7 @@ void addInfoCommand(CLI::App& app, InfoArgs& a) {
   CLI::App* cmd = app.add_subcommand("info", "Print what a scene contains and any warnings");
   cmd->add_option("scene", a.scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required();
   cmd->add_option("-D,--define", a.defines, "Override a scene <default>: -D name=value (repeatable)");
+  cmd->add_flag("--tessellate-spheres", a.tessellateSpheres, "Load sphere shapes as triangle meshes");
 }
 
 namespace {
@@ -34,6 +35,7 @@ const char* emitterName(EmitterKind k) {
 int runInfo(const InfoArgs& a) {
   LoadOptions load;
   load.defines = parseDefines(a.defines);
+  load.tessellateSpheres = a.tessellateSpheres;
   Scene scene = loadScene(a.scene, load);
   std::cout << "scene:      " << a.scene << "\n"
             << "film:       " << scene.film.width << "x" << scene.film.height << ", " << scene.integrator.spp << " spp\n"
@@ -41,9 +43,15 @@ int runInfo(const InfoArgs& a) {
             << "triangles:  " << scene.mesh.triangleCount() << " (" << scene.droppedDegenerateTriangles
             << " degenerate dropped)\n"
             << "vertices:   " << scene.mesh.vertexCount() << "\n"
+            << "spheres:    " << scene.spheres.count() << " (exact)\n"
             << "shapes:     " << scene.shapes.size() << "\n";
-  for (const ShapeInfo& s : scene.shapes)
-    std::cout << "  " << s.type << (s.id.empty() ? "" : " '" + s.id + "'") << ": " << s.triangleCount << " triangles\n";
+  for (const ShapeInfo& s : scene.shapes) {
+    std::cout << "  " << s.type << (s.id.empty() ? "" : " '" + s.id + "'") << ": ";
+    if (s.sphere >= 0)
+      std::cout << "exact sphere, radius " << scene.spheres.radius[size_t(s.sphere)] << "\n";
+    else
+      std::cout << s.triangleCount << " triangles\n";
+  }
   std::cout << "lights:     " << scene.emitters.size() << "\n";
   for (const Emitter& e : scene.emitters)
     std::cout << "  " << emitterName(e.kind) << " (" << e.radiance.x << ", " << e.radiance.y << ", " << e.radiance.z

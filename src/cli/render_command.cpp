@@ -37,6 +37,7 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
       ->check(CLI::IsMember({"auto", "fis", "splat", "splat-unbiased"}));
   cmd->add_option("-D,--define", a.defines, "Override a scene <default>: -D name=value (repeatable)");
   cmd->add_flag("-q,--quiet", a.quiet, "No progress output");
+  cmd->add_flag("--tessellate-spheres", a.tessellateSpheres, "Load sphere shapes as 256 x 512 triangle meshes instead of exact spheres (for comparisons)");
   ErptSettings& e = a.erpt;
   cmd->add_option("--mutations-per-pixel", e.mutationsPerPixel, "ERPT: mutations per pixel M (sets e_d = spp * e_ave / M)")
       ->check(CLI::Range(1, 1 << 24));
@@ -102,6 +103,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
 Scene loadSceneFor(const RenderArgs& a) {
   LoadOptions load;
   load.defines = parseDefines(a.defines);
+  load.tessellateSpheres = a.tessellateSpheres;
   Scene scene = loadScene(a.scene, load);
   for (const std::string& w : scene.warnings.messages) std::cerr << w << "\n";
   return scene;

@@ -8,23 +8,28 @@ namespace erpt {
 
 LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
   const TriangleSoup& mesh = scene.mesh;
+  const SphereSet& spheres = scene.spheres;
   Vec3 lo(1e30f), hi(-1e30f);
-  for (size_t i = 0; i < mesh.vertexCount(); ++i)
+  auto grow = [&](Vec3 p, float r) {
     for (int a = 0; a < 3; ++a) {
-      lo[a] = std::min(lo[a], mesh.position(uint32_t(i))[a]);
-      hi[a] = std::max(hi[a], mesh.position(uint32_t(i))[a]);
+      lo[a] = std::min(lo[a], p[a] - r);
+      hi[a] = std::max(hi[a], p[a] + r);
     }
-  if (mesh.vertexCount() > 0) {
+  };
+  for (size_t i = 0; i < mesh.vertexCount(); ++i) grow(mesh.position(uint32_t(i)), 0.0f);
+  for (uint32_t i = 0; i < spheres.count(); ++i) grow(spheres.center(i), spheres.radius[i]);
+  if (mesh.vertexCount() + spheres.count() > 0) {
     sceneCenter_ = (lo + hi) * 0.5f;
     sceneRadius_ = std::max(1e-3f, 0.5f * length(hi - lo));
   }
   std::vector<double> weights;
-  for (uint32_t t = 0; t < mesh.triangleCount(); ++t) {
-    if (mesh.emitter[t] < 0) continue;
-    float area = 0.5f * length(mesh.faceNormal(t));
-    double w = double(area) * kPi * luminance(scene.emitters[mesh.emitter[t]].radiance);
+  for (uint32_t p = 0; p < scene.primitiveCount(); ++p) {
+    const int e = scene.emitterOf(p);
+    if (e < 0) continue;
+    float area = scene.primitiveArea(p);
+    double w = double(area) * kPi * luminance(scene.emitters[e].radiance);
     if (w <= 0) continue;
-    items_.push_back({Kind::Triangle, t, area});
+    items_.push_back({scene.isSphere(p) ? Kind::Sphere : Kind::Triangle, p, area});
     weights.push_back(w);
   }
   for (uint32_t e = 0; e < scene.emitters.size(); ++e) {
@@ -42,44 +47,134 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
   double total = 0;
   for (double w : weights) total += w;
   double running = 0;
-  triangleProbability_.assign(mesh.triangleCount(), 0.0f);
+  primitiveProbability_.assign(scene.primitiveCount(), 0.0f);
   emitterProbability_.assign(scene.emitters.size(), 0.0f);
   for (size_t i = 0; i < items_.size(); ++i) {
     running += weights[i];
     cdf_.push_back(float(running / total));
     float p = float(weights[i] / total);
-    if (items_[i].kind == Kind::Triangle) triangleProbability_[items_[i].index] = p;
-    if (items_[i].kind == Kind::Environment) environmentProbability_ = p;
-    if (items_[i].kind != Kind::Triangle) emitterProbability_[items_[i].index] = p;
+    const Kind kind = items_[i].kind;
+    if (kind == Kind::Triangle || kind == Kind::Sphere) primitiveProbability_[items_[i].index] = p;
+    else emitterProbability_[items_[i].index] = p;
+    if (kind == Kind::Environment) environmentProbability_ = p;
   }
   if (!cdf_.empty()) cdf_.back() = 1.0f;
 }
 
-Color LightSampler::emitted(uint32_t tri, Vec3 w) const {
-  int e = scene_.mesh.emitter[tri];
-  if (e < 0 || dot(scene_.mesh.faceNormal(tri), w) <= 0) return Color(0.0f);
-  return scene_.emitters[e].radiance;
+Color LightSampler::emitted(const SurfacePoint& sp, Vec3 w) const {
+  if (sp.emitter < 0 || dot(sp.geometricNormal, w) <= 0) return Color(0.0f);
+  return scene_.emitters[sp.emitter].radiance;
 }
 
-float LightSampler::pdfTriangle(uint32_t tri, Vec3 ref, Vec3 p, Vec3 n) const {
-  float prob = triangleProbability_[tri];
+float LightSampler::sphereCone(uint32_t sphere, Vec3 ref) const {
+  const SphereSet& s = scene_.spheres;
+  if (s.flipped[sphere]) return 0.0f;  // lit from inside: the visible part is no cone
+  const Vec3 d = s.center(sphere) - ref;
+  const float dist2 = dot(d, d), r2 = s.radius[sphere] * s.radius[sphere];
+  // Points on or just inside the surface (a ray origin pushed off it) sample by area.
+  if (!(dist2 > r2 * 1.0001f)) return 0.0f;
+  const float sin2Max = r2 / dist2;
+  const float cosMax = std::sqrt(std::max(0.0f, 1 - sin2Max));
+  return sin2Max / (1 + cosMax);  // = 1 - cosMax without the cancellation for small cones
+}
+
+float LightSampler::pdfSolidAngle(const SurfacePoint& light, Vec3 ref) const {
+  const float prob = primitiveProbability_[light.primitive];
   if (prob == 0) return 0.0f;
-  float area = 0.5f * length(scene_.mesh.faceNormal(tri));
-  Vec3 d = p - ref;
-  float dist2 = dot(d, d);
-  float cosL = std::abs(dot(n, d)) / std::sqrt(dist2);
-  if (cosL <= 0) return 0.0f;
-  return prob / area * dist2 / cosL;  // area measure -> solid angle
+  if (scene_.isSphere(light.primitive)) {
+    const float cone = sphereCone(scene_.sphereOf(light.primitive), ref);
+    if (cone > 0) return prob / (2 * kPi * cone);
+  }
+  const Vec3 d = light.position - ref;
+  const float dist2 = dot(d, d);
+  const float cosL = std::abs(dot(light.geometricNormal, d)) / std::sqrt(dist2);
+  if (!(cosL > 0)) return 0.0f;
+  return prob / scene_.primitiveArea(light.primitive) * dist2 / cosL;  // area measure -> solid angle
 }
 
-float LightSampler::pdfAreaTriangle(uint32_t tri) const {
-  float prob = triangleProbability_[tri];
-  return prob > 0 ? prob / (0.5f * length(scene_.mesh.faceNormal(tri))) : 0.0f;
+float LightSampler::pdfArea(uint32_t primitive, Vec3 ref, Vec3 p, Vec3 n) const {
+  const float prob = primitiveProbability_[primitive];
+  if (prob == 0) return 0.0f;
+  if (scene_.isSphere(primitive)) {
+    const float cone = sphereCone(scene_.sphereOf(primitive), ref);
+    if (cone > 0) {
+      const Vec3 d = p - ref;
+      const float dist2 = dot(d, d);
+      return prob / (2 * kPi * cone) * std::abs(dot(n, d)) / (dist2 * std::sqrt(dist2));
+    }
+  }
+  return prob / scene_.primitiveArea(primitive);
 }
 
 float LightSampler::pickProbabilityOfEmitter(int emitter) const { return emitterProbability_[emitter]; }
 
 float LightSampler::pdfEnvironment() const { return environmentProbability_ * kUniformSpherePdf; }
+
+bool LightSampler::finishAreaSample(uint32_t primitive, float pdfArea, Vec3 ref, Vec3 p, Vec3 n,
+                                    LightSample& out) const {
+  out.position = p;
+  out.normal = n;
+  Vec3 d = p - ref;
+  float dist2 = dot(d, d);
+  if (!(dist2 > 0)) return false;
+  out.distance = std::sqrt(dist2);
+  out.direction = d / out.distance;
+  float cosL = -dot(n, out.direction);
+  if (cosL <= 0) return false;  // one-sided emission: we see its back
+  out.emitter = scene_.emitterOf(primitive);
+  out.radiance = scene_.emitters[out.emitter].radiance;
+  out.pdfLight = pdfArea;
+  out.pdf = pdfArea * dist2 / cosL;
+  return true;
+}
+
+bool LightSampler::sampleTriangle(const Item& item, float prob, Vec3 ref, float u1, float u2, LightSample& out) const {
+  const TriangleSoup& m = scene_.mesh;
+  float b1, b2;
+  squareToTriangle(u1, u2, b1, b2);
+  Vec3 a = m.position(m.v0[item.index]), b = m.position(m.v1[item.index]), c = m.position(m.v2[item.index]);
+  return finishAreaSample(item.index, prob / item.area, ref, a * (1 - b1 - b2) + b * b1 + c * b2,
+                          normalize(m.faceNormal(item.index)), out);
+}
+
+bool LightSampler::sampleSphere(const Item& item, float prob, Vec3 ref, float u1, float u2, LightSample& out) const {
+  const SphereSet& s = scene_.spheres;
+  const uint32_t i = scene_.sphereOf(item.index);
+  const Vec3 c = s.center(i);
+  const float r = s.radius[i];
+  const float cone = sphereCone(i, ref);
+  if (cone == 0) {
+    const Vec3 radial = squareToUniformSphere(u1, u2);
+    return finishAreaSample(item.index, prob / item.area, ref, c + radial * r, s.flipped[i] ? -radial : radial, out);
+  }
+  // Uniform in the cone around the direction to the centre; the ray's first hit on the
+  // sphere is the light point (solved in double precision: near the silhouette a float
+  // solve puts the point visibly off the ray), and the direction is the one to that point.
+  const Vec3 toCenter = c - ref;
+  const float dc = length(toCenter);
+  const float oneMinusCos = u1 * cone;
+  const float cosTheta = 1 - oneMinusCos;
+  const float sin2Theta = oneMinusCos * (2 - oneMinusCos);
+  const float sinTheta = std::sqrt(std::max(0.0f, sin2Theta)), phi = 2 * kPi * u2;
+  const Frame frame(toCenter / dc);
+  const Vec3 w = frame.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
+  const float t = refineSphereHit(s, i, ref, w, 0.0f);  // the nearer root
+  const Vec3 radial = normalize(ref + w * t - c);
+  const Vec3 p = c + radial * r;
+  const Vec3 d = p - ref;
+  const float dist2 = dot(d, d);
+  out.position = p;
+  out.normal = radial;
+  out.distance = std::sqrt(dist2);
+  out.direction = d / out.distance;
+  const float cosL = -dot(radial, out.direction);
+  if (!(cosL > 0) || !(dist2 > 0)) return false;  // grazing the silhouette
+  out.emitter = s.emitter[i];
+  out.radiance = scene_.emitters[out.emitter].radiance;
+  out.pdf = prob / (2 * kPi * cone);
+  out.pdfLight = out.pdf * cosL / dist2;
+  return true;
+}
 
 bool LightSampler::sample(Vec3 ref, float uPick, float u1, float u2, LightSample& out) const {
   if (cdf_.empty()) return false;
@@ -87,24 +182,9 @@ bool LightSampler::sample(Vec3 ref, float uPick, float u1, float u2, LightSample
   const Item& item = items_[i];
   float prob = cdf_[i] - (i > 0 ? cdf_[i - 1] : 0.0f);
   out = LightSample{};
-  if (item.kind == Kind::Triangle) {
-    const TriangleSoup& m = scene_.mesh;
-    float b1, b2;
-    squareToTriangle(u1, u2, b1, b2);
-    Vec3 a = m.position(m.v0[item.index]), b = m.position(m.v1[item.index]), c = m.position(m.v2[item.index]);
-    out.position = a * (1 - b1 - b2) + b * b1 + c * b2;
-    out.normal = normalize(m.faceNormal(item.index));
-    Vec3 d = out.position - ref;
-    float dist2 = dot(d, d);
-    out.distance = std::sqrt(dist2);
-    out.direction = d / out.distance;
-    float cosL = -dot(out.normal, out.direction);
-    if (cosL <= 0 || dist2 == 0) return false;  // one-sided emission: we see its back
-    out.emitter = m.emitter[item.index];
-    out.radiance = scene_.emitters[out.emitter].radiance;
-    out.pdfLight = prob / item.area;
-    out.pdf = out.pdfLight * dist2 / cosL;
-  } else if (item.kind == Kind::Point) {
+  if (item.kind == Kind::Triangle) return sampleTriangle(item, prob, ref, u1, u2, out);
+  if (item.kind == Kind::Sphere) return sampleSphere(item, prob, ref, u1, u2, out);
+  if (item.kind == Kind::Point) {
     const Emitter& e = scene_.emitters[item.index];
     out.emitter = int(item.index);
     Vec3 d = e.position - ref;
@@ -117,16 +197,16 @@ bool LightSampler::sample(Vec3 ref, float uPick, float u1, float u2, LightSample
     out.pdf = 0;
     out.pdfLight = prob;
     out.delta = true;
-  } else {
-    out.direction = squareToUniformSphere(u1, u2);
-    out.distance = std::numeric_limits<float>::infinity();
-    out.position = sceneCenter_ + out.direction * (4 * sceneRadius_);
-    out.emitter = int(item.index);
-    out.radiance = scene_.emitters[item.index].radiance;
-    out.pdf = prob * kUniformSpherePdf;
-    out.pdfLight = out.pdf;
-    out.environment = true;
+    return true;
   }
+  out.direction = squareToUniformSphere(u1, u2);
+  out.distance = std::numeric_limits<float>::infinity();
+  out.position = sceneCenter_ + out.direction * (4 * sceneRadius_);
+  out.emitter = int(item.index);
+  out.radiance = scene_.emitters[item.index].radiance;
+  out.pdf = prob * kUniformSpherePdf;
+  out.pdfLight = out.pdf;
+  out.environment = true;
   return true;
 }
 

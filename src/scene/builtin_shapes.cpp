@@ -69,7 +69,7 @@ MeshData makeSphere(Vec3 center, float radius, int rings, int segments) {
       m.positions.push_back(center + n * radius);
       m.normals.push_back(n);
       m.uvs.push_back(float(s) / segments);
-      m.uvs.push_back(1.0f - float(r) / rings);
+      m.uvs.push_back(float(r) / rings);  // Mitsuba 0.6: v = theta / pi, as the exact sphere
     }
   }
   auto id = [&](int r, int s) { return uint32_t(r * (segments + 1) + s); };

@@ -15,7 +15,8 @@ bool isValueTag(const std::string& tag) {
 }
 }  // namespace
 
-SceneBuilder::SceneBuilder(Scene& scene, const LoadOptions& options) : scene_(scene), defines_(options.defines) {}
+SceneBuilder::SceneBuilder(Scene& scene, const LoadOptions& options)
+    : scene_(scene), defines_(options.defines), tessellateSpheres_(options.tessellateSpheres) {}
 
 std::string SceneBuilder::attribute(const Document& doc, const pugi::xml_node& node, const char* name, bool required) {
   pugi::xml_attribute a = node.attribute(name);

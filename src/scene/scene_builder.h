@@ -40,10 +40,14 @@ class SceneBuilder {
   int materialById(const Document& doc, const pugi::xml_node& node, const std::string& id);
   void appendMesh(struct MeshData& mesh, const Transform& toWorld, const Properties& props, int material,
                   int shapeIndex, const SourceLocation& meshWhere);
+  // An exact sphere, when to_world keeps it one (rotation, uniform scale, translation);
+  // false otherwise (the caller tessellates it).
+  bool appendSphere(Vec3 center, float radius, const Transform& toWorld, bool flip, int material, int shapeIndex);
   int defaultMaterial();
 
   Scene& scene_;
   Defines defines_;
+  bool tessellateSpheres_ = false;
   int majorVersion_ = 0;  // 0: Mitsuba 0.5/0.6 dialect, >= 2: Mitsuba 2/3 dialect
   std::list<Document> documents_;  // kept alive: nodes point into them
   std::map<std::string, int> materialIds_, textureIds_;

@@ -13,8 +13,11 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node) {
   std::string type = attribute(doc, node, "type");
   SourceLocation where = doc.where(node);
 
-  // The mesh, in object space.
+  // The mesh, in object space (empty for an exact sphere).
   MeshData mesh;
+  bool exactSphere = false;
+  Vec3 sphereCenter(0.0f);
+  float sphereRadius = 1;
   SourceLocation meshWhere = where;
   auto meshFile = [&]() {
     const Property* file = props.find("filename");
@@ -40,9 +43,11 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node) {
   } else if (type == "disk") {
     mesh = makeDisk();
   } else if (type == "sphere") {
-    float radius = props.getFloat("radius", 1.0f);
-    if (!(radius > 0)) throw InputError(props.find("radius")->where, "sphere radius must be positive");
-    mesh = makeSphere(props.getPoint("center", Vec3(0.0f)), radius);
+    sphereRadius = props.getFloat("radius", 1.0f);
+    if (!(sphereRadius > 0) || !std::isfinite(sphereRadius))
+      throw InputError(props.find("radius")->where, "sphere radius must be positive and finite");
+    sphereCenter = props.getPoint("center", Vec3(0.0f));
+    exactSphere = !tessellateSpheres_;
   } else {
     scene_.warnings.add(where, "shape '" + type + "' is not supported; skipped");
     return;
@@ -69,13 +74,21 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node) {
   info.where = where;
   info.firstTriangle = uint32_t(scene_.mesh.triangleCount());
   scene_.shapes.push_back(info);
-  appendMesh(mesh, props.getTransform("to_world"), props, material, shapeIndex, meshWhere);
+  const Transform toWorld = props.getTransform("to_world");
+  const bool flip = props.getBool("flip_normals", false);
+  if (exactSphere && !appendSphere(sphereCenter, sphereRadius, toWorld, flip, material, shapeIndex)) {
+    scene_.warnings.add(where, "to_world scales the sphere unevenly; it is tessellated (an ellipsoid)");
+    exactSphere = false;
+  }
+  if (type == "sphere" && !exactSphere) mesh = makeSphere(sphereCenter, sphereRadius);
+  if (!exactSphere) appendMesh(mesh, toWorld, props, material, shapeIndex, meshWhere);
   scene_.shapes.back().triangleCount = uint32_t(scene_.mesh.triangleCount()) - info.firstTriangle;
 
   for (const pugi::xml_node& e : emitters) {
     int index = emitter(doc, e, shapeIndex);
     if (index < 0) continue;
     for (uint32_t t = info.firstTriangle; t < scene_.mesh.triangleCount(); ++t) scene_.mesh.emitter[t] = index;
+    if (exactSphere) scene_.spheres.emitter.back() = index;
   }
   props.warnUnused(scene_.warnings);
 }
@@ -138,6 +151,38 @@ void SceneBuilder::appendMesh(MeshData& mesh, const Transform& toWorld, const Pr
     scene_.warnings.add(scene_.shapes[shapeIndex].where, "shape has no triangles");
 }
 
+bool SceneBuilder::appendSphere(Vec3 center, float radius, const Transform& toWorld, bool flip, int material,
+                                int shapeIndex) {
+  // Columns of the linear part: a similarity has three orthogonal columns of one length.
+  const Vec3 ax = toWorld.vector({1, 0, 0}), ay = toWorld.vector({0, 1, 0}), az = toWorld.vector({0, 0, 1});
+  const float scale = length(ax);
+  const float tolerance = 1e-4f * scale;
+  if (!(scale > 0) || std::abs(length(ay) - scale) > tolerance || std::abs(length(az) - scale) > tolerance ||
+      std::abs(dot(ax, ay)) > tolerance * scale || std::abs(dot(ax, az)) > tolerance * scale ||
+      std::abs(dot(ay, az)) > tolerance * scale)
+    return false;
+  const Vec3 c = toWorld.point(center);
+  const float r = radius * scale;
+  if (!isFinite(c) || !std::isfinite(r))
+    throw InputError(scene_.shapes[shapeIndex].where, "non-finite sphere centre or radius after to_world");
+  SphereSet& s = scene_.spheres;
+  s.cx.push_back(c.x);
+  s.cy.push_back(c.y);
+  s.cz.push_back(c.z);
+  s.radius.push_back(r);
+  Frame frame;
+  frame.s = ax / scale;
+  frame.t = ay / scale;
+  frame.n = az / scale;
+  s.frame.push_back(frame);
+  s.material.push_back(material);
+  s.emitter.push_back(-1);
+  s.shape.push_back(shapeIndex);
+  s.flipped.push_back(flip);
+  scene_.shapes[shapeIndex].sphere = int(s.count()) - 1;
+  return true;
+}
+
 int SceneBuilder::emitter(const Document& doc, const pugi::xml_node& node, int shape) {
   Properties props = readProperties(doc, node);
   std::string type = attribute(doc, node, "type");
@@ -181,7 +226,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
   scene.file = path;
   xml::SceneBuilder builder(scene, options);
   builder.loadFile(path, 0);
-  if (scene.mesh.triangleCount() == 0 && scene.emitters.empty())
+  if (scene.primitiveCount() == 0 && scene.emitters.empty())
     throw InputError({path, 0}, "the scene has no geometry and no emitters");
   return scene;
 }

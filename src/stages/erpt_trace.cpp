@@ -70,7 +70,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
       complete(proposals, rays, i);
       continue;
     }
-    const SurfacePoint sp = surfaceAt(scene.mesh, hits.primID[i], hits.u[i], hits.v[i]);
+    const SurfacePoint sp = surfaceAt(scene, hits.primID[i], hits.u[i], hits.v[i]);
     const Material& m = scene.materials[size_t(sp.material)];
     z.p = sp.position;
     z.ns = sp.shading.n;
@@ -79,10 +79,10 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
     z.u = sp.u;
     z.v = sp.v;
     z.kind = expected.kind;
-    z.emitter = scene.mesh.emitter[sp.triangle];
+    z.emitter = sp.emitter;
 
     if (expected.kind == kLightVertex) {
-      if (!tracesToLight || isBlack(mc.lights.emitted(sp.triangle, -dir))) {
+      if (!tracesToLight || isBlack(mc.lights.emitted(sp, -dir))) {
         rejectProposal(proposals, rays, i, kRejectKindChanged);
         continue;
       }

@@ -19,12 +19,10 @@ void stageGatherDirect(const StageContext& ctx, const RayQueue& shadowRays, cons
       if (bsdfHits.geomID[i] == kNoHit) {
         if (env) total += weight * env->radiance * emitterHitWeight(pdf, ctx.lights.pdfEnvironment());
       } else {
-        uint32_t tri = bsdfHits.primID[i];
-        Color le = ctx.lights.emitted(tri, -dir);
+        SurfacePoint lp = surfaceAt(ctx.scene, bsdfHits.primID[i], bsdfHits.u[i], bsdfHits.v[i]);
+        Color le = ctx.lights.emitted(lp, -dir);
         if (!isBlack(le)) {
-          SurfacePoint lp = surfaceAt(ctx.scene.mesh, tri, bsdfHits.u[i], bsdfHits.v[i]);
-          Vec3 from = q.hitAt(i);
-          float lightPdf = ctx.lights.pdfTriangle(tri, from, lp.position, lp.geometricNormal);
+          float lightPdf = ctx.lights.pdfSolidAngle(lp, q.hitAt(i));
           total += weight * le * emitterHitWeight(pdf, lightPdf);
         }
       }

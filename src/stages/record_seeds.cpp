@@ -61,7 +61,9 @@ void stageRecordSeeds(const StageContext& ctx, const PathQueue& paths, const Pat
       store.vertices.kind[last] = environment ? kEnvironmentVertex : kLightVertex;
       store.vertices.pdfForward[last] = 0;
       // What next-event estimation would have used for this light point.
-      float pLight = environment ? ctx.lights.pdfEnvironment() : ctx.lights.pdfAreaTriangle(hits.primID[k]);
+      const VertexQueue& sv = store.vertices;
+      float pLight = environment ? ctx.lights.pdfEnvironment()
+                                 : ctx.lights.pdfArea(hits.primID[k], sv.pAt(last - 1), sv.pAt(last), sv.ngAt(last));
       appendSeed(store, paths, id, false, slots.emitWeight[k], slots.emitAt(k), slots.pLengthHere[k], pLight, begin);
     }
     if (slots.neeWeight[k] > 0 && shadowRays.tfar[k] >= 0) {

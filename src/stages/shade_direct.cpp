@@ -26,8 +26,8 @@ void stageShadeDirect(const StageContext& ctx, const RayQueue& cameraRays, const
     if (hits.geomID[i] == kNoHit) {
       if (env) radiance = env->radiance;
     } else {
-      SurfacePoint sp = surfaceAt(ctx.scene.mesh, hits.primID[i], hits.u[i], hits.v[i]);
-      radiance = ctx.lights.emitted(sp.triangle, -dir);
+      SurfacePoint sp = surfaceAt(ctx.scene, hits.primID[i], hits.u[i], hits.v[i]);
+      radiance = ctx.lights.emitted(sp, -dir);
       q.hitSet(i, sp.position);
       if (ctx.maxDepth != 1) {
         uint64_t key = sampleKey(ctx.seed, q.pixel[i], q.sample[i]);

@@ -53,7 +53,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
       }
       continue;
     }
-    const SurfacePoint sp = surfaceAt(ctx.scene.mesh, hits.primID[k], hits.u[k], hits.v[k]);
+    const SurfacePoint sp = surfaceAt(ctx.scene, hits.primID[k], hits.u[k], hits.v[k]);
     const Material& m = ctx.scene.materials[sp.material];
     if (recording) {
       VertexQueue::Row v;  // the whole row: pdfForward 0 and the parent link are written too
@@ -64,14 +64,14 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
       v.u = sp.u;
       v.v = sp.v;
       v.kind = m.isPureSpecular() ? kSpecularVertex : kNonSpecularVertex;
-      v.emitter = ctx.scene.mesh.emitter[sp.triangle];
+      v.emitter = sp.emitter;
       v.parent = paths.lastVertex[id];
       history.vertices->setRow(vertex, v);
       paths.lastVertex[id] = int32_t(vertex);
     }
-    const Color le = ctx.lights.emitted(sp.triangle, -dir);
+    const Color le = ctx.lights.emitted(sp, -dir);
     if (!isBlack(le)) {
-      float lightPdf = prevPdf > 0 ? ctx.lights.pdfTriangle(sp.triangle, prev, sp.position, sp.geometricNormal) : 0.0f;
+      float lightPdf = prevPdf > 0 ? ctx.lights.pdfSolidAngle(sp, prev) : 0.0f;
       const float w = emitterHitWeight(prevPdf, lightPdf);
       addRadiance(paths, id, throughput * le * w);
       if (recording) {

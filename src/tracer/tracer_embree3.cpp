@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "erpt/surface.h"
 #include "erpt/tracer.h"
 
 namespace erpt {
@@ -17,7 +18,41 @@ void onEmbreeError(void*, RTCError code, const char* message) {
 struct Tracer::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  const SphereSet* spheres = nullptr;
+  unsigned sphereGeometry = RTC_INVALID_GEOMETRY_ID;
+  unsigned firstSpherePrimitive = 0;
+
+  // Embree names a sphere hit by (sphere geometry, sphere index); the renderer by the
+  // primitive id and the sphere coordinates of the hit point (surface.h).
+  void toSphereHits(const RayQueue& rays, HitQueue& hits, IndexRange range) const {
+    if (sphereGeometry == RTC_INVALID_GEOMETRY_ID) return;
+    for (size_t i = range.begin; i < range.end; ++i) {
+      if (hits.geomID[i] != sphereGeometry) continue;
+      const uint32_t sphere = hits.primID[i];
+      const Vec3 o = rays.orgAt(i), d = rays.dirAt(i);
+      const float t = refineSphereHit(*spheres, sphere, o, d, rays.tfar[i]);
+      sphereCoordinates(*spheres, sphere, o + d * t, hits.u[i], hits.v[i]);
+      hits.primID[i] = firstSpherePrimitive + sphere;
+    }
+  }
 };
+
+namespace {
+void attachSpheres(RTCDevice device, RTCScene scene, const SphereSet& spheres) {
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+  auto* points = static_cast<float*>(
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), spheres.count()));
+  for (uint32_t i = 0; i < spheres.count(); ++i) {
+    points[4 * i] = spheres.cx[i];
+    points[4 * i + 1] = spheres.cy[i];
+    points[4 * i + 2] = spheres.cz[i];
+    points[4 * i + 3] = spheres.radius[i];
+  }
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene, geom);
+  rtcReleaseGeometry(geom);
+}
+}  // namespace
 
 Tracer::Tracer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   impl_->device = rtcNewDevice(nullptr);
@@ -47,6 +82,12 @@ Tracer::Tracer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     rtcCommitGeometry(geom);
     rtcAttachGeometry(impl_->scene, geom);
     rtcReleaseGeometry(geom);
+  }
+  if (scene.spheres.count() > 0) {
+    impl_->spheres = &scene.spheres;
+    impl_->firstSpherePrimitive = uint32_t(mesh.triangleCount());
+    impl_->sphereGeometry = mesh.triangleCount() > 0 ? 1u : 0u;  // ids in attachment order
+    attachSpheres(impl_->device, impl_->scene, scene.spheres);
   }
   rtcCommitScene(impl_->scene);
 }
@@ -88,6 +129,7 @@ void Tracer::intersect(RayQueue& rays, HitQueue& hits, IndexRange range, RayCohe
   rh.hit.instID[0] = hits.instID.data() + b;
   RTCIntersectContext ctx = makeContext(coherence);
   rtcIntersectNp(impl_->scene, &ctx, &rh, unsigned(range.size()));
+  impl_->toSphereHits(rays, hits, range);
 }
 
 void Tracer::occluded(RayQueue& rays, IndexRange range) const {
@@ -132,6 +174,7 @@ void Tracer::intersectOneByOne(RayQueue& rays, HitQueue& hits, IndexRange range)
     hits.primID[i] = rh.hit.primID;
     hits.geomID[i] = rh.hit.geomID;
   }
+  impl_->toSphereHits(rays, hits, range);
 }
 
 void Tracer::occludedOneByOne(RayQueue& rays, IndexRange range) const {

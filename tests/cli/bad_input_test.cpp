@@ -46,6 +46,14 @@ const BadCase kCases[] = {
      "<scene version=\"3.0.0\">\n  <shape type=\"cube\">\n    <transform name=\"to_world\">\n      <translate "
      "x=\"nan\"/>\n    </transform>\n  </shape>\n</scene>\n",
      nullptr, "", 4, nullptr, "non-finite value"},
+    {"NegativeSphereRadius",
+     "<scene version=\"3.0.0\">\n  <shape type=\"sphere\">\n    <float name=\"radius\" value=\"-1\"/>\n  "
+     "</shape>\n</scene>\n",
+     nullptr, "", 3, nullptr, "sphere radius must be positive"},
+    {"SphereCentreOverflowsAfterTransform",
+     "<scene version=\"3.0.0\">\n  <shape type=\"sphere\">\n    <point name=\"center\" value=\"1e30, 0, 0\"/>\n"
+     "    <transform name=\"to_world\"><scale value=\"1e30\"/></transform>\n  </shape>\n</scene>\n",
+     nullptr, "", 2, nullptr, "non-finite sphere centre"},
     {"UndefinedParameter",
      "<scene version=\"3.0.0\">\n  <shape type=\"sphere\">\n    <float name=\"radius\" value=\"$r\"/>\n  "
      "</shape>\n</scene>\n",

@@ -53,5 +53,18 @@ TEST(StatisticalErpt, DiskLensAndVeachCausticMatchPathTracerBlockByBlock) {
   expectErptMatchesPathTracerBlockByBlock(loadScene(test::sourceDir() + "/scenes/default/scene.xml"), 16, erpt, 3000);
 }
 
+// Exact spheres as path vertices: a spherical light (light vertices on a sphere; seeds made
+// by cone sampling) above a glass sphere that focuses it onto a diffuse floor, in front of a
+// mirror sphere. Lens perturbations move eye vertices over the spheres, caustic perturbations
+// start at the sphere light and refract through the glass one.
+TEST(StatisticalErpt, SphereLightAndGlassSphereMatchPathTracerBlockByBlock) {
+  const Scene scene = loadScene(test::sourceDir() + "/tests/data/sphere-lights.xml");
+  ASSERT_EQ(scene.spheres.count(), 3u);
+  ErptSettings erpt;
+  erpt.mutationsPerPixel = 400;
+  erpt.directSamples = -1;
+  expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 5000);
+}
+
 }  // namespace
 }  // namespace erpt

@@ -29,7 +29,7 @@ std::optional<SurfacePoint> traceOne(const ErptWorld& w, Vec3 origin, Vec3 dir) 
   setRay(r, 0, origin, dir, 0.0f, std::numeric_limits<float>::infinity());
   w.tracer->intersect(r, h, IndexRange{0, 1}, RayCoherence::Incoherent);
   if (h.geomID[0] == kNoHit) return std::nullopt;
-  return surfaceAt(w.scene.mesh, h.primID[0], h.u[0], h.v[0]);
+  return surfaceAt(w.scene, h.primID[0], h.u[0], h.v[0]);
 }
 
 // Where the walk from the source s ends: film position of vertex 1 and the direction from

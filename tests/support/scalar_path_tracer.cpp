@@ -12,8 +12,24 @@ namespace erpt::test {
 
 namespace {
 
-RTCScene buildScene(RTCDevice device, const TriangleSoup& mesh) {
+RTCScene buildScene(RTCDevice device, const Scene& s) {
+  const TriangleSoup& mesh = s.mesh;
   RTCScene scene = rtcNewScene(device);
+  if (s.spheres.count() > 0) {  // geometry 0; the triangles are geometry 1
+    RTCGeometry spheres = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT);
+    auto* p = static_cast<float*>(
+        rtcSetNewGeometryBuffer(spheres, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 16, s.spheres.count()));
+    for (uint32_t i = 0; i < s.spheres.count(); ++i) {
+      const Vec3 c = s.spheres.center(i);
+      p[4 * i] = c.x;
+      p[4 * i + 1] = c.y;
+      p[4 * i + 2] = c.z;
+      p[4 * i + 3] = s.spheres.radius[i];
+    }
+    rtcCommitGeometry(spheres);
+    rtcAttachGeometry(scene, spheres);
+    rtcReleaseGeometry(spheres);
+  }
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<float*>(
       rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 16, mesh.vertexCount()));
@@ -42,7 +58,7 @@ RTCScene buildScene(RTCDevice device, const TriangleSoup& mesh) {
 RgbImage scalarPathTrace(const Scene& scene, int width, int height, int spp, int maxDepth, uint64_t seed,
                          RgbImage* varianceOfMean) {
   RTCDevice device = rtcNewDevice(nullptr);
-  RTCScene rtc = buildScene(device, scene.mesh);
+  RTCScene rtc = buildScene(device, scene);
   Camera camera(scene.camera, width, height);
   const Emitter* env = scene.environment();
   std::mt19937_64 rng(seed);
@@ -79,8 +95,16 @@ RgbImage scalarPathTrace(const Scene& scene, int width, int height, int spp, int
             if (env) radiance += throughput * env->radiance;
             break;
           }
-          SurfacePoint sp = surfaceAt(scene.mesh, rh.hit.primID, rh.hit.u, rh.hit.v);
-          int e = scene.mesh.emitter[sp.triangle];
+          SurfacePoint sp;
+          if (scene.spheres.count() > 0 && rh.hit.geomID == 0) {
+            float u, v;
+            const float t = refineSphereHit(scene.spheres, rh.hit.primID, org, dir, rh.ray.tfar);
+            sphereCoordinates(scene.spheres, rh.hit.primID, org + dir * t, u, v);
+            sp = sphereSurfaceAt(scene.spheres, rh.hit.primID, scene.spherePrimitive(rh.hit.primID), u, v);
+          } else {
+            sp = triangleSurfaceAt(scene.mesh, rh.hit.primID, rh.hit.u, rh.hit.v);
+          }
+          int e = sp.emitter;
           if (e >= 0 && dot(sp.geometricNormal, dir) < 0) radiance += throughput * scene.emitters[e].radiance;
           if (maxDepth >= 0 && depth >= maxDepth) break;
           const Material& m = scene.materials[sp.material];
