@@ -215,8 +215,9 @@ void BM_ErptChainLoop(benchmark::State& state) {
     for (const auto& [name, seconds] : times.all()) {
       total += seconds;
       if (name == "erpt intersect" || name == "erpt connect") embree += seconds;
-      // The single-threaded parts (film deposits in slot order, refilling slots from seeds).
-      if (name == "erpt deposit" || name == "erpt refill") serial += seconds;
+      // The single-threaded parts: film deposits in slot order, refilling slots from seeds,
+      // the per-seed triage of each seed batch (which seeds start chains, how many).
+      if (name == "erpt deposit" || name == "erpt refill" || name == "erpt seed triage") serial += seconds;
     }
   }
   state.counters["mutations/s"] = benchmark::Counter(double(mutations), benchmark::Counter::kIsRate);

@@ -9,7 +9,8 @@
 
 namespace erpt {
 
-enum class BsdfKind { Diffuse, Conductor, RoughConductor, Dielectric, ThinDielectric, Plastic, RoughPlastic };
+enum class BsdfKind { Diffuse, Conductor, RoughConductor, Dielectric, ThinDielectric, Plastic, RoughPlastic, RoughDielectric,
+                      Phong };
 enum class MicrofacetKind { Beckmann, GGX };
 
 struct Material {
@@ -18,17 +19,18 @@ struct Material {
   // Wrapped in `twosided`: the back side behaves like the front. Without it, reflective
   // BSDFs are black from behind (as in Mitsuba); dielectrics are two-sided by nature.
   bool twoSided = false;
-  ColorParam reflectance{Color(0.5f)};            // diffuse / plastic's diffuse layer
-  ColorParam specularReflectance{Color(1.0f)};    // conductor, dielectric, plastic coat
+  ColorParam reflectance{Color(0.5f)};            // diffuse / plastic's diffuse layer / phong's diffuse lobe
+  ColorParam specularReflectance{Color(1.0f)};    // conductor, dielectric, plastic coat, phong's specular lobe
   ColorParam specularTransmittance{Color(1.0f)};  // dielectric, thindielectric
   Color eta{0.0f}, k{1.0f};                       // conductor (default: a perfect mirror)
   float intIOR = 1.5046f, extIOR = 1.000277f;     // dielectric / plastic (Mitsuba's defaults)
   MicrofacetKind distribution = MicrofacetKind::Beckmann;
   float alpha = 0.1f;
+  float exponent = 30;  // phong: the specular lobe's exponent
   bool nonlinear = false;  // plastic: Mitsuba's `nonlinear` internal scattering model
   // Derived when the scene is finalized:
   float fdrInternal = 0;             // plastic: diffuse Fresnel reflectance seen from inside
-  float specularSamplingWeight = 0;  // plastic: share of samples given to the coat
+  float specularSamplingWeight = 0;  // plastic: share of samples given to the coat; phong: to the specular lobe
   std::vector<float> coatTransmittance;  // roughplastic: 1 - coat albedo over cos(theta) in [0, 1]
 
   float relativeIOR() const { return intIOR / extIOR; }

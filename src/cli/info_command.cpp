@@ -24,6 +24,8 @@ const char* kindName(BsdfKind k) {
     case BsdfKind::ThinDielectric: return "thindielectric";
     case BsdfKind::Plastic: return "plastic";
     case BsdfKind::RoughPlastic: return "roughplastic";
+    case BsdfKind::RoughDielectric: return "roughdielectric";
+    case BsdfKind::Phong: return "phong";
   }
   return "?";
 }

@@ -42,6 +42,7 @@ void ErptChains::consume(const SeedStore& batch) {
     float energy;
   };
   std::vector<Started> started;
+  auto triageStart = std::chrono::steady_clock::now();
   for (size_t i = 0; i < batch.size(); ++i) {
     if (!seedForChains(batch, i, settings().directSamples > 0)) continue;
     const float e = luminance(batch.contribution(i));
@@ -66,6 +67,7 @@ void ErptChains::consume(const SeedStore& batch) {
     }
     if (copies > 0) started.push_back(Started{uint32_t(i), copies, energy});
   }
+  times_.add("erpt seed triage", secondsSince(triageStart));
   zeroF_.assign(started.size(), 0);
   forEachRange("erpt seed check", started.size(), 64, [&](IndexRange r) {
     for (size_t k = r.begin; k < r.end; ++k) zeroF_[k] = seedHasZeroContribution(config_.step, batch, started[k].seed);

@@ -9,7 +9,9 @@ namespace erpt {
 
 namespace {
 
-bool isTransmissive(BsdfKind k) { return k == BsdfKind::Dielectric || k == BsdfKind::ThinDielectric; }
+bool isTransmissive(BsdfKind k) {
+  return k == BsdfKind::Dielectric || k == BsdfKind::ThinDielectric || k == BsdfKind::RoughDielectric;
+}
 
 // Reflective BSDFs see the world from their front side. For `twosided` materials a hit on
 // the back is mirrored to the front; otherwise the back side is black (flip = 0).
@@ -70,6 +72,30 @@ float microfacetReflectionPdf(const Material& m, Vec3 wi, Vec3 wo) {
   return microfacetD(m.distribution, m.alpha, h) * h.z / (4.0f * dotOH);
 }
 
+// Mitsuba 0.6's modified Phong: a diffuse lobe plus (n + 2) / (2 pi) cos^n(alpha), alpha the
+// angle between wo and the mirror direction of wi (energy conserving when the two
+// reflectances sum to at most 1), sampled lobe by lobe with specularSamplingWeight.
+float phongLobeCos(Vec3 wi, Vec3 wo) { return dot(wo, mirror(wi)); }
+
+Color phongEval(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
+  const float a = phongLobeCos(wi, wo);
+  const float spec = a > 0 ? std::pow(a, m.exponent) * (m.exponent + 2) * (0.5f * kInvPi) : 0.0f;
+  return (c.reflectance * kInvPi + c.specularReflectance * spec) * wo.z;
+}
+
+float phongPdf(const Material& m, Vec3 wi, Vec3 wo) {
+  const float a = phongLobeCos(wi, wo);
+  const float spec = a > 0 ? std::pow(a, m.exponent) * (m.exponent + 1) * (0.5f * kInvPi) : 0.0f;
+  return m.specularSamplingWeight * spec + (1 - m.specularSamplingWeight) * cosineHemispherePdf(wo);
+}
+
+// The specular lobe's direction: cos(alpha) = u^(1 / (n + 1)) around the mirror direction.
+Vec3 samplePhongLobe(const Material& m, Vec3 wi, float u2, float u3) {
+  const float cosA = std::pow(u2, 1.0f / (m.exponent + 1)), sinA = std::sqrt(std::max(0.0f, 1 - cosA * cosA));
+  const float phi = 2 * kPi * u3;
+  return Frame(mirror(wi)).toWorld({sinA * std::cos(phi), sinA * std::sin(phi), cosA});
+}
+
 Color evalFront(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
   if (wi.z <= 0 || wo.z <= 0) return Color(0.0f);
   switch (m.kind) {
@@ -81,6 +107,8 @@ Color evalFront(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
       return plasticDiffuse(m, c, wi, wo);
     case BsdfKind::RoughPlastic:
       return microfacetReflection(m, wi, wo, c.specularReflectance, false) + plasticDiffuse(m, c, wi, wo);
+    case BsdfKind::Phong:
+      return phongEval(m, c, wi, wo);
     default:
       return Color(0.0f);  // purely specular
   }
@@ -99,9 +127,84 @@ float pdfFront(const Material& m, Vec3 wi, Vec3 wo) {
       float ps = plasticSpecularProbability(m, 1 - coatTransmittance(m, wi.z));
       return ps * microfacetReflectionPdf(m, wi, wo) + (1 - ps) * cosineHemispherePdf(wo);
     }
+    case BsdfKind::Phong:
+      return phongPdf(m, wi, wo);
     default:
       return 0.0f;
   }
+}
+
+// Rough dielectric (Walter et al. 2007), both sides, in radiance transport (wi towards the
+// camera). The half vector of (wi, wo), oriented to the outside (+z): wi + wo for a
+// reflection, wi + etaWi wo for a refraction, with etaWi = n(wo's side) / n(wi's side) (1 for
+// a reflection). False when the pair has no valid half vector.
+bool roughDielectricHalfVector(const Material& m, Vec3 wi, Vec3 wo, Vec3& h, float& etaWi) {
+  if (wi.z == 0 || wo.z == 0) return false;
+  const bool reflection = wi.z * wo.z > 0;
+  etaWi = reflection ? 1.0f : (wi.z > 0 ? m.relativeIOR() : 1.0f / m.relativeIOR());
+  h = reflection ? wi + wo : wi + wo * etaWi;
+  const float len = length(h);
+  if (!(len > 0)) return false;
+  h = h / (h.z < 0 ? -len : len);
+  // Each direction must lie on the side of the microfacet its hemisphere says (Smith G1 is
+  // zero otherwise), and a refracted pair must straddle the microfacet.
+  if (dot(wi, h) * wi.z <= 0 || dot(wo, h) * wo.z <= 0) return false;
+  return true;
+}
+
+Color evalRoughDielectric(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
+  Vec3 h;
+  float etaWi;
+  if (!roughDielectricHalfVector(m, wi, wo, h, etaWi)) return Color(0.0f);
+  const float d = microfacetD(m.distribution, m.alpha, h);
+  if (d == 0) return Color(0.0f);
+  const float g = microfacetG1(m.distribution, m.alpha, wi, h) * microfacetG1(m.distribution, m.alpha, wo, h);
+  const float cosIH = dot(wi, h), cosOH = dot(wo, h);
+  const float f = fresnelDielectric(cosIH, m.relativeIOR());
+  if (wi.z * wo.z > 0) return c.specularReflectance * (f * d * g / (4.0f * std::abs(wi.z)));
+  // Walter's BTDF times |cos(wo)|, with the radiance compression (n_i / n_t)^2 of radiance
+  // transport; the eta^2 of the importance form cancels against it.
+  const float denom = cosIH + etaWi * cosOH;
+  return c.specularTransmittance *
+         ((1 - f) * d * g * std::abs(cosIH * cosOH) / (std::abs(wi.z) * denom * denom));
+}
+
+// Density of sampleRoughDielectric: a microfacet normal with density D(h) h.z, reflection
+// with probability F, refraction with 1 - F, times the Jacobian from h to wo.
+float pdfRoughDielectric(const Material& m, Vec3 wi, Vec3 wo) {
+  Vec3 h;
+  float etaWi;
+  if (!roughDielectricHalfVector(m, wi, wo, h, etaWi)) return 0.0f;
+  const float cosIH = dot(wi, h), cosOH = dot(wo, h);
+  const float f = fresnelDielectric(cosIH, m.relativeIOR());
+  const float pdfH = microfacetD(m.distribution, m.alpha, h) * h.z;
+  if (wi.z * wo.z > 0) return pdfH * f / (4.0f * std::abs(cosOH));
+  const float denom = cosIH + etaWi * cosOH;
+  return pdfH * (1 - f) * etaWi * etaWi * std::abs(cosOH) / (denom * denom);
+}
+
+bool sampleRoughDielectric(const Material& m, const SurfaceColors& c, Vec3 wi, float u1, float u2, float u3,
+                           BsdfSample& s) {
+  const Vec3 h = microfacetSampleNormal(m.distribution, m.alpha, u2, u3);
+  float cosT;
+  const float cosIH = dot(wi, h);
+  // A microfacet that faces away from wi's side is not seen from there (Smith G1 = 0): that
+  // share of the normals is lost, as pdfRoughDielectric's integral below 1 says.
+  if (cosIH * wi.z <= 0) return false;
+  const float f = fresnelDielectric(cosIH, m.relativeIOR(), &cosT);
+  if (u1 < f) {
+    s.wo = reflect(wi, h);
+    if (s.wo.z * wi.z <= 0) return false;
+  } else {
+    const float inv = cosIH > 0 ? 1.0f / m.relativeIOR() : m.relativeIOR();  // n_i / n_t at the facet
+    s.wo = h * (cosIH * inv + cosT) - wi * inv;
+    if (s.wo.z * wi.z >= 0) return false;
+    s.eta = cosIH > 0 ? m.relativeIOR() : 1.0f / m.relativeIOR();
+  }
+  s.pdf = pdfRoughDielectric(m, wi, s.wo);
+  if (!(s.pdf > 0)) return false;
+  s.weight = evalRoughDielectric(m, c, wi, s.wo) / s.pdf;
+  return true;
 }
 
 // Tangential components scale by n_i / n_t on refraction.
@@ -145,12 +248,14 @@ bool sampleThinDielectric(const Material& m, const SurfaceColors& c, Vec3 wi, fl
 }  // namespace
 
 Color bsdfEval(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
+  if (m.kind == BsdfKind::RoughDielectric) return evalRoughDielectric(m, c, wi, wo);
   float flip = sideFlip(m, wi);
   if (flip == 0 || isTransmissive(m.kind)) return Color(0.0f);
   return evalFront(m, c, flipZ(wi, flip), flipZ(wo, flip));
 }
 
 float bsdfPdf(const Material& m, const SurfaceColors&, Vec3 wi, Vec3 wo) {
+  if (m.kind == BsdfKind::RoughDielectric) return pdfRoughDielectric(m, wi, wo);
   float flip = sideFlip(m, wi);
   if (flip == 0 || isTransmissive(m.kind)) return 0.0f;
   return pdfFront(m, flipZ(wi, flip), flipZ(wo, flip));
@@ -161,6 +266,7 @@ bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wiWorldSide, flo
   s = BsdfSample{};
   if (m.kind == BsdfKind::Dielectric) return sampleDielectric(m, c, wiWorldSide, u1, s);
   if (m.kind == BsdfKind::ThinDielectric) return sampleThinDielectric(m, c, wiWorldSide, u1, s);
+  if (m.kind == BsdfKind::RoughDielectric) return sampleRoughDielectric(m, c, wiWorldSide, u1, u2, u3, s);
   float flip = sideFlip(m, wiWorldSide);
   if (flip == 0) return false;
   Vec3 wi = flipZ(wiWorldSide, flip);
@@ -197,6 +303,9 @@ bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wiWorldSide, flo
                      : squareToCosineHemisphere(u2, u3);
       break;
     }
+    case BsdfKind::Phong:
+      s.wo = u1 < m.specularSamplingWeight ? samplePhongLobe(m, wi, u2, u3) : squareToCosineHemisphere(u2, u3);
+      break;
     default:
       return false;
   }
@@ -296,6 +405,11 @@ float roughCoatAlbedo(const Material& m, float cosTheta) {
 }  // namespace
 
 void finalizeMaterial(Material& m) {
+  if (m.kind == BsdfKind::Phong) {
+    // Mitsuba 0.6: the lobes' shares of samples follow their (mean) reflectances.
+    const float d = luminance(m.reflectance.value), s = luminance(m.specularReflectance.value);
+    m.specularSamplingWeight = d + s > 0 ? s / (d + s) : 0.5f;
+  }
   if (m.kind == BsdfKind::Plastic || m.kind == BsdfKind::RoughPlastic) {
     m.fdrInternal = diffuseFresnelReflectance(1.0f / m.relativeIOR());
     float d = luminance(m.reflectance.value), s = luminance(m.specularReflectance.value);

@@ -161,10 +161,11 @@ class SerializedFile {
     if (version == 4) in.readCString();  // the shape's name; unused
     uint64_t vertexCount = in.readUInt(8), triangleCount = in.readUInt(8);
 
-    bool single = flags & kSinglePrecision, dbl = flags & kDoublePrecision;
-    if (single == dbl)
-      fail("shape flags give no single precision (0x1000) or double precision (0x2000)");
-    size_t real = single ? 4 : 8;
+    // Mitsuba reads doubles exactly when 0x2000 is set; version 3 writers (and some version 4
+    // exporters) set no precision flag at all for single-precision data.
+    const bool single = flags & kSinglePrecision, dbl = flags & kDoublePrecision;
+    if (single && dbl) fail("shape flags give both single (0x1000) and double (0x2000) precision");
+    size_t real = dbl ? 8 : 4;
     if (vertexCount > 0xFFFFFFFFull) fail("too many vertices for 32-bit indices");
     checkPlausible(vertexCount, triangleCount, flags, real, compressedSize);
 

@@ -1,5 +1,6 @@
 #include "scene_builder.h"
 
+#include <cctype>
 #include <filesystem>
 
 namespace erpt::xml {
@@ -28,10 +29,50 @@ std::string SceneBuilder::attribute(const Document& doc, const pugi::xml_node& n
   return defines_.substitute(a.value(), doc.where(node));
 }
 
-std::string SceneBuilder::resolvePath(const Document& doc, const std::string& relative) const {
+namespace {
+
+std::string lowerCase(std::string s) {
+  for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// The existing path that equals `p` up to letter case, one component at a time (the first
+// match in directory order when several differ only in case); empty if there is none.
+fs::path findIgnoringCase(const fs::path& p) {
+  fs::path found = p.root_path();
+  for (const fs::path& part : p.relative_path()) {
+    const fs::path exact = found / part;
+    std::error_code ec;
+    if (fs::exists(exact, ec)) {
+      found = exact;
+      continue;
+    }
+    const std::string want = lowerCase(part.string());
+    fs::path match;
+    for (fs::directory_iterator it(found.empty() ? fs::path(".") : found, ec), end; !ec && it != end; it.increment(ec))
+      if (lowerCase(it->path().filename().string()) == want) {
+        match = it->path();
+        break;
+      }
+    if (match.empty()) return {};
+    found = found.empty() ? match.filename() : found / match.filename();
+  }
+  return found;
+}
+
+}  // namespace
+
+std::string SceneBuilder::resolvePath(const Document& doc, const std::string& relative,
+                                      const SourceLocation& where) const {
   fs::path p(relative);
-  if (p.is_absolute()) return p.string();
-  return (fs::path(doc.path()).parent_path() / p).lexically_normal().string();
+  if (!p.is_absolute()) p = (fs::path(doc.path()).parent_path() / p).lexically_normal();
+  std::error_code ec;
+  if (fs::exists(p, ec)) return p.string();
+  const fs::path other = findIgnoringCase(p);
+  if (other.empty()) return p.string();  // the caller reports it missing
+  scene_.warnings.add(where, "file '" + p.string() + "' not found; using '" + other.string() +
+                                 "' (the same name in other letter case)");
+  return other.string();
 }
 
 void SceneBuilder::loadFile(const std::string& path, int includeDepth) {
@@ -78,7 +119,7 @@ void SceneBuilder::sceneChild(const Document& doc, const pugi::xml_node& node, i
 void SceneBuilder::include(const Document& doc, const pugi::xml_node& node, int includeDepth) {
   if (includeDepth >= kMaxIncludeDepth)
     throw InputError(doc.where(node), "includes nested more than 16 deep (an include cycle?)");
-  std::string file = resolvePath(doc, attribute(doc, node, "filename"));
+  std::string file = resolvePath(doc, attribute(doc, node, "filename"), doc.where(node));
   if (!fs::exists(file)) throw InputError(doc.where(node), "included file '" + file + "' not found");
   loadFile(file, includeDepth + 1);
 }

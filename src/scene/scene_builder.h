@@ -36,7 +36,10 @@ class SceneBuilder {
                             std::vector<pugi::xml_node>* children = nullptr);
   Transform readTransform(const Document& doc, const pugi::xml_node& node);
   std::string attribute(const Document& doc, const pugi::xml_node& node, const char* name, bool required = true);
-  std::string resolvePath(const Document& doc, const std::string& relative) const;
+  // A referenced file's path, relative to the document. When it does not exist but a file
+  // whose path differs only in letter case does (a scene made on Windows or macOS), that one,
+  // with a warning at `where` naming both.
+  std::string resolvePath(const Document& doc, const std::string& relative, const SourceLocation& where) const;
   int materialById(const Document& doc, const pugi::xml_node& node, const std::string& id);
   void appendMesh(struct MeshData& mesh, const Transform& toWorld, const Properties& props, int material,
                   int shapeIndex, const SourceLocation& meshWhere);

@@ -85,11 +85,12 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
       m.distribution = readDistribution(props, w);
     }
   } else if (type == "dielectric" || type == "thindielectric" || type == "roughdielectric") {
-    m.kind = type == "thindielectric" ? BsdfKind::ThinDielectric : BsdfKind::Dielectric;
-    if (type == "roughdielectric") {
-      w.add(doc.where(node), "roughdielectric is not supported yet; rendered as a smooth dielectric");
-      props.find("alpha");
-      props.find("distribution");
+    m.kind = type == "thindielectric" ? BsdfKind::ThinDielectric
+             : type == "roughdielectric" ? BsdfKind::RoughDielectric
+                                         : BsdfKind::Dielectric;
+    if (m.kind == BsdfKind::RoughDielectric) {
+      m.alpha = readAlpha(props, w);
+      m.distribution = readDistribution(props, w);
     }
     m.intIOR = props.getIOR("int_ior", 1.5046f);
     m.extIOR = props.getIOR("ext_ior", 1.000277f);
@@ -106,6 +107,12 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
       m.alpha = readAlpha(props, w);
       m.distribution = readDistribution(props, w);
     }
+  } else if (type == "phong") {
+    m.kind = BsdfKind::Phong;
+    m.exponent = props.getFloat("exponent", 30.0f);
+    if (!(m.exponent >= 0 && m.exponent <= 1e6f)) throw InputError(props.where(), "phong exponent must be in [0, 1e6]");
+    m.reflectance = props.getColorParam("diffuse_reflectance", Color(0.5f), scene_);
+    m.specularReflectance = props.getColorParam("specular_reflectance", Color(0.2f), scene_);
   } else {
     int inner = nested();
     if (inner >= 0) {
@@ -139,7 +146,7 @@ int SceneBuilder::texture(const Document& doc, const pugi::xml_node& node) {
     t.kind = TextureKind::Bitmap;
     const Property* file = props.find("filename");
     if (!file) throw InputError(doc.where(node), "bitmap texture needs a 'filename'");
-    std::string path = resolvePath(doc, file->value);
+    std::string path = resolvePath(doc, file->value, file->where);
     if (!std::filesystem::exists(path)) throw InputError(file->where, "texture file '" + path + "' not found");
     bool srgb = false;
     RgbImage img = readImage(path, &srgb);

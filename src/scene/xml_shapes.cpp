@@ -22,7 +22,7 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node) {
   auto meshFile = [&]() {
     const Property* file = props.find("filename");
     if (!file) throw InputError(where, "shape '" + type + "' needs a 'filename'");
-    std::string path = resolvePath(doc, file->value);
+    std::string path = resolvePath(doc, file->value, file->where);
     if (!std::filesystem::exists(path)) throw InputError(file->where, "mesh file '" + path + "' not found");
     meshWhere = {path, 0};
     return path;

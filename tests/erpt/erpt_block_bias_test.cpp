@@ -66,5 +66,18 @@ TEST(StatisticalErpt, SphereLightAndGlassSphereMatchPathTracerBlockByBlock) {
   expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 5000);
 }
 
+// Glossy vertices: a rough glass sphere's are non-specular (eval and pdf on both sides, with
+// the radiance compression of refraction), so lens perturbations move through it and connect
+// across it; caustic perturbations do not apply (no specular chain); a Phong sphere's lobe.
+TEST(StatisticalErpt, RoughGlassAndPhongMatchPathTracerBlockByBlock) {
+  const Scene scene = loadScene(test::sourceDir() + "/tests/data/rough-glass.xml");
+  ASSERT_EQ(scene.materials[scene.spheres.material[0]].kind, BsdfKind::RoughDielectric);
+  ASSERT_EQ(scene.materials[scene.spheres.material[2]].kind, BsdfKind::Phong);
+  ErptSettings erpt;
+  erpt.mutationsPerPixel = 400;
+  erpt.directSamples = -1;
+  expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 7000);
+}
+
 }  // namespace
 }  // namespace erpt

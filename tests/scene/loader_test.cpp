@@ -1,6 +1,8 @@
 // Scene loading: both Mitsuba dialects, the shared Cornell box, transforms, defaults and -D.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "erpt/image_io.h"
 #include "erpt/scene_loader.h"
 #include "support/test_support.h"
@@ -208,6 +210,24 @@ TEST(Loader, ShapesAndFlipNormals) {
     EXPECT_NEAR(length(p - Vec3(1, 0, 0)), 2.0f, 1e-5f);
     EXPECT_GT(dot(s.mesh.faceNormal(t), p - Vec3(1, 0, 0)), 0.0f);
   }
+}
+
+// A scene made on Windows or macOS names files in another letter case than they have on disk.
+TEST(Loader, FileInOtherLetterCaseIsUsedWithAWarning) {
+  TempDir dir;
+  std::filesystem::create_directories(dir.path() / "meshes");
+  dir.write("meshes/quad.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  Scene s = loadScene(dir.write("s.xml", R"(<scene version="3.0.0"><shape type="obj">
+      <string name="filename" value="Meshes/Quad.OBJ"/></shape></scene>)"));
+  EXPECT_EQ(s.mesh.triangleCount(), 1u);
+  ASSERT_EQ(s.warnings.messages.size(), 1u);
+  const std::string& w = s.warnings.messages[0];
+  EXPECT_NE(w.find("s.xml:2"), std::string::npos) << w;
+  EXPECT_NE(w.find("Meshes/Quad.OBJ' not found; using '"), std::string::npos) << w;
+  EXPECT_NE(w.find("meshes/quad.obj'"), std::string::npos) << w;
+  // No match in any letter case: still the one-line error.
+  EXPECT_THROW(loadScene(dir.write("t.xml", R"(<scene version="3.0.0"><shape type="obj">
+      <string name="filename" value="meshes/other.obj"/></shape></scene>)")), InputError);
 }
 
 TEST(Loader, DegenerateTrianglesAreDroppedAndCounted) {

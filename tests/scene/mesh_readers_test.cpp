@@ -419,6 +419,20 @@ TEST_F(MeshReadersTest, SerializedVersion3) {
   checkFloatTriangle(readSerialized(path, 1, warnings_));
 }
 
+// Version 3 files as Mitsuba 0.6 exporters write them: no precision flag, single precision.
+TEST_F(MeshReadersTest, SerializedWithoutPrecisionFlagIsSinglePrecision) {
+  for (uint16_t version : {uint16_t(3), uint16_t(4)}) {
+    TestShape shape = floatTriangleWithNormalsAndUvs();
+    shape.flags &= ~uint32_t(kFloat32);
+    std::string path = write("noflag.serialized", serializeFile({shape}, version));
+    checkFloatTriangle(readSerialized(path, 0, warnings_));
+  }
+  TestShape both = floatTriangleWithNormalsAndUvs();
+  both.flags |= kFloat64;
+  std::string path = write("both.serialized", serializeFile({both}, 4));
+  expectInputError([&] { readSerialized(path, 0, warnings_); }, path, "both single (0x1000) and double (0x2000)");
+}
+
 TEST_F(MeshReadersTest, SerializedFaceNormalsDropVertexNormalsAndColorsAreSkipped) {
   TestShape shape = floatTriangleWithNormalsAndUvs();
   shape.flags |= kFaceNormals | kColors;
