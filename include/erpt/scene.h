@@ -69,6 +69,21 @@ struct Emitter {
   Color radiance{0.0f};  // area and constant: radiance; point: intensity (W/sr)
   Vec3 position;         // point
   int shape = -1;        // area: the shape it is attached to
+  // Point lights that are Mitsuba `spot` lights: full intensity within beamWidth of the axis,
+  // falling linearly in angle to 0 at cutoffAngle (radians); omnidirectional when not a spot.
+  bool spot = false;
+  Vec3 axis{0.0f, 0.0f, 1.0f};
+  float cutoffAngle = kPi, beamWidth = kPi;
+
+  // The share of the intensity sent along unit direction w (leaving the light): 1 for an
+  // omnidirectional point light.
+  float falloff(Vec3 w) const {
+    if (!spot) return 1.0f;
+    const float cosTheta = dot(w, axis);
+    if (cosTheta >= std::cos(beamWidth)) return 1.0f;
+    if (cosTheta <= std::cos(cutoffAngle)) return 0.0f;
+    return (cutoffAngle - std::acos(cosTheta)) / (cutoffAngle - beamWidth);
+  }
 };
 
 enum class FilterKind { Box, Tent, Gaussian };

@@ -38,7 +38,9 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     if (lum <= 0) continue;
     if (em.kind == EmitterKind::Point) {
       items_.push_back({Kind::Point, e, 0});
-      weights.push_back(4 * kPi * lum);
+      // A spot's power: the solid angle of its cone, counting the falloff band as half.
+      const double cone = em.spot ? 2 * kPi * (1 - 0.5 * (std::cos(em.beamWidth) + std::cos(em.cutoffAngle))) : 4 * kPi;
+      weights.push_back(cone * lum);
     } else if (em.kind == EmitterKind::Constant) {
       items_.push_back({Kind::Environment, e, 0});
       weights.push_back(4.0 * kPi * kPi * double(sceneRadius_) * sceneRadius_ * lum);
@@ -193,7 +195,8 @@ bool LightSampler::sample(Vec3 ref, float uPick, float u1, float u2, LightSample
     out.position = e.position;
     out.distance = std::sqrt(dist2);
     out.direction = d / out.distance;
-    out.radiance = e.radiance / (dist2 * prob);  // the pick probability folded in
+    out.radiance = e.radiance * (e.falloff(-out.direction) / (dist2 * prob));  // the pick probability folded in
+    if (isBlack(out.radiance)) return false;  // outside a spot's cone
     out.pdf = 0;
     out.pdfLight = prob;
     out.delta = true;

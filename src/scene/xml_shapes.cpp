@@ -197,6 +197,21 @@ int SceneBuilder::emitter(const Document& doc, const pugi::xml_node& node, int s
     e.kind = EmitterKind::Point;
     e.radiance = props.getColor("intensity", Color(1.0f));
     e.position = props.getTransform("to_world").point(props.getPoint("position", Vec3(0.0f)));
+  } else if (type == "spot") {
+    // Mitsuba's spot: at the origin of to_world, shining along its +z axis.
+    e.kind = EmitterKind::Point;
+    e.spot = true;
+    e.radiance = props.getColor("intensity", Color(1.0f));
+    const Transform toWorld = props.getTransform("to_world");
+    e.position = toWorld.point(Vec3(0.0f));
+    e.axis = normalize(toWorld.vector({0.0f, 0.0f, 1.0f}));
+    const float cutoff = props.getFloat("cutoff_angle", 20.0f);
+    const float beam = props.getFloat("beam_width", cutoff * 0.75f);
+    if (!(cutoff > 0 && cutoff <= 180)) throw InputError(where, "spot cutoff_angle must be in (0, 180] degrees");
+    if (!(beam > 0 && beam <= cutoff)) throw InputError(where, "spot beam_width must be in (0, cutoff_angle] degrees");
+    if (!isFinite(e.axis)) throw InputError(where, "spot to_world has no direction (a zero scale?)");
+    e.cutoffAngle = cutoff * kPi / 180;
+    e.beamWidth = beam * kPi / 180;
   } else if (type == "constant") {
     e.kind = EmitterKind::Constant;
     e.radiance = props.getColor("radiance", Color(1.0f));

@@ -79,5 +79,18 @@ TEST(StatisticalErpt, RoughGlassAndPhongMatchPathTracerBlockByBlock) {
   expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 7000);
 }
 
+// A spot light: ERPT's point-light vertex with a direction-dependent intensity. Caustic
+// perturbations turn the direction leaving the spot, so the falloff (and its cut-off) is part
+// of f; a proposal leaving the cone has f = 0 and is rejected.
+TEST(StatisticalErpt, SpotLightCausticMatchesPathTracerBlockByBlock) {
+  const Scene scene = loadScene(test::sourceDir() + "/tests/data/spot-caustic.xml");
+  ASSERT_EQ(scene.emitters.size(), 1u);
+  ASSERT_TRUE(scene.emitters[0].spot);
+  ErptSettings erpt;
+  erpt.mutationsPerPixel = 400;
+  erpt.directSamples = -1;
+  expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 9000);
+}
+
 }  // namespace
 }  // namespace erpt

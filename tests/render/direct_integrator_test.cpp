@@ -78,6 +78,50 @@ TEST(Direct, PointLightOverDiffusePlaneMatchesInverseSquareLaw) {
   EXPECT_EQ(checked, 64);
 }
 
+// Mitsuba's spot: full intensity within beam_width of its axis, linear in angle down to 0 at
+// cutoff_angle. Camera above a diffuse plane, spot at height h pointing straight down: each
+// pixel is the point-light law times the falloff at its angle off the axis (noise-free NEE).
+TEST(Direct, SpotLightFollowsItsFalloffCurve) {
+  TempDir dir;
+  const float a = 0.6f, I = 5.0f, h = 1.0f, cutoff = 45, beam = 25;
+  Scene scene = loadScene(dir.write("s.xml", R"(<scene version="3.0.0">
+    <sensor type="perspective"><float name="fov" value="60"/>
+      <transform name="to_world"><lookat origin="0,0,3" target="0,0,0" up="0,1,0"/></transform>
+      <film type="hdrfilm"><integer name="width" value="96"/><integer name="height" value="96"/>
+        <rfilter type="box"/></film></sensor>
+    <shape type="rectangle"><transform name="to_world"><scale value="4"/></transform>
+      <bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></shape>
+    <emitter type="spot"><rgb name="intensity" value="5"/><float name="cutoff_angle" value="45"/>
+      <float name="beam_width" value="25"/>
+      <transform name="to_world"><lookat origin="0.1, -0.2, 1" target="0.1, -0.2, 0" up="0,1,0"/></transform></emitter>
+  </scene>)"));
+  RenderSettings s;
+  s.integrator = "direct";
+  s.spp = 16;
+  RenderStats stats;
+  RgbImage img = render(scene, s, stats);
+  Camera cam(scene.camera, 96, 96);
+  int inBeam = 0, inBand = 0, outside = 0;
+  for (int y = 1; y < 95; y += 3)
+    for (int x = 1; x < 95; x += 3) {
+      Camera::Ray r = cam.generateRay(x + 0.5f, y + 0.5f);
+      Vec3 p = r.origin + r.direction * (-r.origin.z / r.direction.z);
+      Vec3 d = Vec3(0.1f, -0.2f, h) - p;
+      float dist2 = dot(d, d), dist = std::sqrt(dist2);
+      float angle = std::acos(h / dist) * 180 / kPi;  // off the (downward) axis
+      // Pixels whose footprint (about 1 degree here) straddles a kink of the curve are skipped;
+      // elsewhere the pixel average of the smooth law matches its centre value to ~0.5%.
+      if (std::abs(angle - beam) < 2.0f || std::abs(angle - cutoff) < 2.0f) continue;
+      float falloff = angle <= beam ? 1.0f : angle >= cutoff ? 0.0f : (cutoff - angle) / (cutoff - beam);
+      float expected = a / kPi * I * falloff * (h / dist) / dist2;
+      EXPECT_NEAR(img.at(x, y).y, expected, 0.01f * expected + 1e-6f) << x << "," << y << " angle " << angle;
+      (falloff == 1 ? inBeam : falloff == 0 ? outside : inBand)++;
+    }
+  EXPECT_GT(inBeam, 20);
+  EXPECT_GT(inBand, 20);
+  EXPECT_GT(outside, 20);
+}
+
 TEST(Direct, SameSeedSameImageForAnyThreadCount) {
   Scene scene = loadScene(test::sourceDir() + "/scenes/default/scene.xml");
   RenderSettings s;
