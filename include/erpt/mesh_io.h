@@ -33,5 +33,8 @@ MeshData makeRectangle();  // [-1,1]^2 at z = 0, normal +z
 MeshData makeCube();       // [-1,1]^3, outward normals
 MeshData makeDisk(int segments = 256);  // unit disk at z = 0, normal +z
 MeshData makeSphere(Vec3 center, float radius, int rings = 256, int segments = 512);
+// Mitsuba's open cylinder (no caps) from p0 to p1: exact radial normals, u = azimuth / 2 pi,
+// v = position along the axis (0 at p0, 1 at p1); 1024 segments around.
+MeshData makeCylinder(Vec3 p0, Vec3 p1, float radius, int segments = 1024);
 
 }  // namespace erpt

@@ -1,5 +1,6 @@
-// Mitsuba's analytic shapes as triangle meshes in object space. The sphere is tessellated
-// finely and carries exact normals, so neither silhouettes nor shading show facets.
+// Mitsuba's analytic shapes as triangle meshes in object space. The sphere (when not exact,
+// see docs/exact-spheres.md) and the cylinder are tessellated finely and carry exact
+// normals, so neither silhouettes nor shading show facets.
 #include "erpt/mesh_io.h"
 
 namespace erpt {
@@ -79,6 +80,27 @@ MeshData makeSphere(Vec3 center, float radius, int rings, int segments) {
       if (r != 0) m.indices.insert(m.indices.end(), {id(r, s), id(r + 1, s), id(r, s + 1)});
       if (r != rings - 1) m.indices.insert(m.indices.end(), {id(r, s + 1), id(r + 1, s), id(r + 1, s + 1)});
     }
+  return m;
+}
+
+MeshData makeCylinder(Vec3 p0, Vec3 p1, float radius, int segments) {
+  MeshData m;
+  const Vec3 axis = p1 - p0;
+  const Frame frame(normalize(axis));
+  for (int s = 0; s <= segments; ++s) {
+    const float phi = 2 * kPi * float(s) / float(segments);
+    const Vec3 n = frame.toWorld({std::cos(phi), std::sin(phi), 0.0f});
+    for (int end = 0; end < 2; ++end) {
+      m.positions.push_back((end == 0 ? p0 : p1) + n * radius);
+      m.normals.push_back(n);
+      m.uvs.push_back(float(s) / float(segments));
+      m.uvs.push_back(float(end));
+    }
+  }
+  for (int s = 0; s < segments; ++s) {
+    const uint32_t a = uint32_t(2 * s), b = a + 1, c = a + 2, d = a + 3;  // (p0, p1) at s and s + 1
+    m.indices.insert(m.indices.end(), {a, c, b, b, c, d});
+  }
   return m;
 }
 

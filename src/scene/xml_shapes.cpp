@@ -42,6 +42,12 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node) {
     mesh = makeCube();
   } else if (type == "disk") {
     mesh = makeDisk();
+  } else if (type == "cylinder") {
+    const float radius = props.getFloat("radius", 1.0f);
+    if (!(radius > 0)) throw InputError(props.find("radius")->where, "cylinder radius must be positive");
+    const Vec3 p0 = props.getPoint("p0", Vec3(0.0f)), p1 = props.getPoint("p1", Vec3(0.0f, 0.0f, 1.0f));
+    if (!(length(p1 - p0) > 0)) throw InputError(where, "cylinder p0 and p1 must differ");
+    mesh = makeCylinder(p0, p1, radius);
   } else if (type == "sphere") {
     sphereRadius = props.getFloat("radius", 1.0f);
     if (!(sphereRadius > 0) || !std::isfinite(sphereRadius))

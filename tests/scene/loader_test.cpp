@@ -230,6 +230,27 @@ TEST(Loader, FileInOtherLetterCaseIsUsedWithAWarning) {
       <string name="filename" value="meshes/other.obj"/></shape></scene>)")), InputError);
 }
 
+// Mitsuba's open cylinder: radius r around the segment p0 -> p1, outward normals, no caps.
+TEST(Loader, CylinderIsAnOpenTubeWithOutwardNormals) {
+  TempDir dir;
+  Scene s = loadScene(dir.write("s.xml", R"(<scene version="3.0.0"><shape type="cylinder">
+      <point name="p0" value="1, 0, 0"/><point name="p1" value="1, 2, 0"/><float name="radius" value="0.5"/>
+    </shape></scene>)"));
+  ASSERT_EQ(s.shapes.size(), 1u);
+  EXPECT_EQ(s.mesh.triangleCount(), 2048u);
+  for (uint32_t t = 0; t < s.mesh.triangleCount(); t += 7) {
+    const Vec3 p = s.mesh.position(s.mesh.v0[t]);
+    const Vec3 radial = Vec3(p.x - 1, 0, p.z);
+    EXPECT_NEAR(length(radial), 0.5f, 1e-5f);
+    EXPECT_GE(p.y, -1e-6f);
+    EXPECT_LE(p.y, 2 + 1e-6f);
+    EXPECT_GT(dot(normalize(s.mesh.faceNormal(t)), normalize(radial)), 0.99f);
+    EXPECT_NEAR(dot(s.mesh.normal(s.mesh.v0[t]), normalize(radial)), 1.0f, 1e-5f);
+  }
+  EXPECT_THROW(loadScene(dir.write("t.xml", R"(<scene version="3.0.0"><shape type="cylinder">
+      <point name="p0" value="1, 0, 0"/><point name="p1" value="1, 0, 0"/></shape></scene>)")), InputError);
+}
+
 TEST(Loader, DegenerateTrianglesAreDroppedAndCounted) {
   TempDir dir;
   dir.write("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\nf 1 1 3\n");
