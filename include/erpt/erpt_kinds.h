@@ -42,6 +42,7 @@ enum InPlaceReason : uint8_t {
   kInPlaceNoMutation,        // no mutation of the strategy applies to the path
   kInPlaceZeroContribution,  // f of the seed is zero or not finite in a chosen mutation's measure
   kInPlaceNoDepositEnergy,   // e_d = 0: the pilot pass found no seed energy
+  kInPlaceDirectionalLight,  // lit by a directional light: no mutation moves such paths yet
   kInPlaceReasonCount
 };
 const char* inPlaceReasonName(InPlaceReason r);

@@ -4,7 +4,8 @@
 // that emits inwards) uniformly by area. An emissive primitive's power is
 // pi * area * lum(radiance), so within one uniformly bright area light the choice is
 // uniform by area; point lights weigh 4 pi lum(intensity); the constant environment weighs
-// 4 pi^2 R^2 lum(radiance) for the scene's bounding radius R (pbrt's estimate).
+// 4 pi^2 R^2 lum(radiance) for the scene's bounding radius R (pbrt's estimate), a directional
+// light pi R^2 lum(irradiance).
 // ERPT never samples lights after the seed pass (its mutations keep the light vertex or trace
 // towards it), so the choice of technique here only changes the seeds' variance.
 #pragma once
@@ -49,7 +50,7 @@ class LightSampler {
   const Scene& scene() const { return scene_; }
 
  private:
-  enum class Kind { Triangle, Sphere, Point, Environment };
+  enum class Kind { Triangle, Sphere, Point, Environment, Directional };
   struct Item {
     Kind kind;
     uint32_t index;  // primitive id (triangles, spheres) or emitter index

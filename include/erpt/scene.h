@@ -62,17 +62,17 @@ struct ShapeInfo {
   int sphere = -1;  // index into Scene::spheres when the shape is an exact sphere
 };
 
-enum class EmitterKind { Area, Point, Constant };
+enum class EmitterKind { Area, Point, Constant, Directional };
 
 struct Emitter {
   EmitterKind kind = EmitterKind::Area;
-  Color radiance{0.0f};  // area and constant: radiance; point: intensity (W/sr)
+  Color radiance{0.0f};  // area and constant: radiance; point: intensity (W/sr); directional: irradiance
   Vec3 position;         // point
   int shape = -1;        // area: the shape it is attached to
   // Point lights that are Mitsuba `spot` lights: full intensity within beamWidth of the axis,
   // falling linearly in angle to 0 at cutoffAngle (radians); omnidirectional when not a spot.
   bool spot = false;
-  Vec3 axis{0.0f, 0.0f, 1.0f};
+  Vec3 axis{0.0f, 0.0f, 1.0f};  // spot: where it shines; directional: where its light travels
   float cutoffAngle = kPi, beamWidth = kPi;
 
   // The share of the intensity sent along unit direction w (leaving the light): 1 for an

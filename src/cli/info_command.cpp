@@ -30,7 +30,7 @@ const char* kindName(BsdfKind k) {
   return "?";
 }
 const char* emitterName(EmitterKind k) {
-  return k == EmitterKind::Area ? "area" : k == EmitterKind::Point ? "point" : "constant";
+  return k == EmitterKind::Area ? "area" : k == EmitterKind::Point ? "point" : k == EmitterKind::Directional ? "directional" : "constant";
 }
 }  // namespace
 

@@ -14,6 +14,11 @@ InPlaceReason seedSignatureReason(const ErptStepContext& ctx, const SeedStore& s
   if (n > uint32_t(kMaxChainVertices)) return kInPlaceTooLong;
   uint8_t kinds[kMaxChainVertices];
   for (uint32_t j = 0; j < n; ++j) kinds[j] = store.vertices.kind[store.seeds.vertexBegin[i] + j];
+  // A directional light's vertex is a direction, not a point the perturbations can aim at or
+  // start from: such paths keep their energy where the path tracer found them.
+  const int32_t light = store.vertices.emitter[store.seeds.vertexBegin[i] + n - 1];
+  if (light >= 0 && ctx.measure.scene.emitters[size_t(light)].kind == EmitterKind::Directional)
+    return kInPlaceDirectionalLight;
   // Both choices of the `Mixed` coin.
   const MutationStrategy s = ctx.settings.strategy;
   const bool none = chooseMutation(s, kinds, int(n), 0.0f) == MutationKind::None &&

@@ -42,6 +42,7 @@ const char* inPlaceReasonName(InPlaceReason r) {
     case kInPlaceNoMutation: return "no mutation applies";
     case kInPlaceZeroContribution: return "zero or non-finite f";
     case kInPlaceNoDepositEnergy: return "no deposition energy (e_d = 0)";
+    case kInPlaceDirectionalLight: return "directional light";
     default: return "?";
   }
 }

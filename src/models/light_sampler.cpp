@@ -41,6 +41,9 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
       // A spot's power: the solid angle of its cone, counting the falloff band as half.
       const double cone = em.spot ? 2 * kPi * (1 - 0.5 * (std::cos(em.beamWidth) + std::cos(em.cutoffAngle))) : 4 * kPi;
       weights.push_back(cone * lum);
+    } else if (em.kind == EmitterKind::Directional) {
+      items_.push_back({Kind::Directional, e, 0});
+      weights.push_back(kPi * double(sceneRadius_) * sceneRadius_ * lum);  // through the scene's disk
     } else if (em.kind == EmitterKind::Constant) {
       items_.push_back({Kind::Environment, e, 0});
       weights.push_back(4.0 * kPi * kPi * double(sceneRadius_) * sceneRadius_ * lum);
@@ -186,6 +189,20 @@ bool LightSampler::sample(Vec3 ref, float uPick, float u1, float u2, LightSample
   out = LightSample{};
   if (item.kind == Kind::Triangle) return sampleTriangle(item, prob, ref, u1, u2, out);
   if (item.kind == Kind::Sphere) return sampleSphere(item, prob, ref, u1, u2, out);
+  if (item.kind == Kind::Directional) {
+    // A Dirac in direction: the light point stands beyond the scene's bounding sphere.
+    const Emitter& e = scene_.emitters[item.index];
+    out.emitter = int(item.index);
+    out.direction = -e.axis;
+    out.distance = 2 * (length(ref - sceneCenter_) + sceneRadius_);
+    out.position = ref + out.direction * out.distance;
+    out.normal = e.axis;
+    out.radiance = e.radiance / prob;
+    out.pdf = 0;
+    out.pdfLight = prob;
+    out.delta = true;
+    return true;
+  }
   if (item.kind == Kind::Point) {
     const Emitter& e = scene_.emitters[item.index];
     out.emitter = int(item.index);

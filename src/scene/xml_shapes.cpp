@@ -218,6 +218,13 @@ int SceneBuilder::emitter(const Document& doc, const pugi::xml_node& node, int s
     if (!isFinite(e.axis)) throw InputError(where, "spot to_world has no direction (a zero scale?)");
     e.cutoffAngle = cutoff * kPi / 180;
     e.beamWidth = beam * kPi / 180;
+  } else if (type == "directional") {
+    // Light arriving from infinitely far along `direction` (or to_world's +z).
+    e.kind = EmitterKind::Directional;
+    e.radiance = props.getColor("irradiance", Color(1.0f));
+    const Transform toWorld = props.getTransform("to_world");
+    e.axis = normalize(toWorld.vector(props.getPoint("direction", Vec3(0.0f, 0.0f, 1.0f))));
+    if (!isFinite(e.axis)) throw InputError(where, "directional light has no direction (zero vector or scale)");
   } else if (type == "constant") {
     e.kind = EmitterKind::Constant;
     e.radiance = props.getColor("radiance", Color(1.0f));

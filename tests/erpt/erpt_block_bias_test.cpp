@@ -3,6 +3,7 @@
 // mean stays right.
 #include <gtest/gtest.h>
 
+#include "erpt/erpt_kinds.h"
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
 #include "support/block_bias.h"
@@ -90,6 +91,26 @@ TEST(StatisticalErpt, SpotLightCausticMatchesPathTracerBlockByBlock) {
   erpt.mutationsPerPixel = 400;
   erpt.directSamples = -1;
   expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 9000);
+}
+
+// A directional light: its seeds stay where the path tracer found them (kInPlaceDirectionalLight),
+// the area light's seeds start chains; the sum must still be the path tracer's image.
+TEST(StatisticalErpt, DirectionalLightSeedsInPlaceMatchPathTracerBlockByBlock) {
+  const Scene scene = loadScene(test::sourceDir() + "/tests/data/directional.xml");
+  ErptSettings erpt;
+  erpt.mutationsPerPixel = 400;
+  erpt.directSamples = -1;
+  {
+    RenderSettings s;
+    s.integrator = "erpt";
+    s.spp = 4;
+    s.erpt = erpt;
+    RenderStats stats;
+    render(scene, s, stats);
+    EXPECT_GT(stats.erpt.inPlace[kInPlaceDirectionalLight], 1000u);
+    EXPECT_GT(stats.erpt.chains, 1000u);
+  }
+  expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 11000);
 }
 
 }  // namespace

@@ -122,6 +122,41 @@ TEST(Direct, SpotLightFollowsItsFalloffCurve) {
   EXPECT_GT(outside, 20);
 }
 
+// A directional light of irradiance E (normal incidence) arriving at angle theta on a diffuse
+// plane of albedo a: L = a / pi * E cos(theta) at every lit pixel; a box casts a shadow
+// (next-event rays towards the light are blocked), for both integrators that do NEE.
+TEST(Direct, DirectionalLightGivesUniformLambertShading) {
+  TempDir dir;
+  Scene scene = loadScene(dir.write("s.xml", R"(<scene version="3.0.0">
+    <sensor type="perspective"><float name="fov" value="50"/>
+      <transform name="to_world"><lookat origin="0,0,3" target="0,0,0" up="0,1,0"/></transform>
+      <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="32"/>
+        <rfilter type="box"/></film></sensor>
+    <shape type="rectangle"><transform name="to_world"><scale value="4"/></transform>
+      <bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></shape>
+    <shape type="cube"><transform name="to_world"><scale value="0.2"/><translate x="-0.6" y="0.6" z="0.5"/></transform></shape>
+    <emitter type="directional"><rgb name="irradiance" value="3"/><vector name="direction" value="0.6, 0, -0.8"/></emitter>
+  </scene>)"));
+  const float expected = 0.6f / kPi * 3.0f * 0.8f;
+  for (const char* integrator : {"direct", "path"}) {
+    RenderSettings s;
+    s.integrator = integrator;
+    s.spp = 16;
+    s.maxDepth = 2;
+    RenderStats stats;
+    const RgbImage img = render(scene, s, stats);
+    int lit = 0, shadowed = 0;
+    for (int y = 0; y < 32; ++y)
+      for (int x = 0; x < 32; ++x) {
+        const float v = img.at(x, y).y;
+        if (std::abs(v - expected) < 1e-3f * expected) ++lit;
+        if (v < 1e-6f) ++shadowed;
+      }
+    EXPECT_GT(lit, 32 * 32 * 3 / 4) << integrator;  // all but the box and its shadow
+    EXPECT_GT(shadowed, 10) << integrator;
+  }
+}
+
 TEST(Direct, SameSeedSameImageForAnyThreadCount) {
   Scene scene = loadScene(test::sourceDir() + "/scenes/default/scene.xml");
   RenderSettings s;
