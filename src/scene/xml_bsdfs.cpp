@@ -123,6 +123,17 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     w.add(doc.where(node), "bsdf '" + type + "' is not supported; using diffuse with reflectance 0.5");
     props = Properties(props.plugin(), props.where());  // its parameters mean nothing to diffuse
   }
+  // Scenes written for rough variants (or other renderers) give smooth BSDFs a roughness.
+  if ((type == "dielectric" || type == "thindielectric" || type == "conductor" || type == "plastic") &&
+      (props.has("alpha") || props.has("alpha_u") || props.has("alpha_v"))) {
+    const std::string name = props.has("alpha") ? "alpha" : props.has("alpha_u") ? "alpha_u" : "alpha_v";
+    const Property* a = props.find(name);
+    props.find("alpha");
+    props.find("alpha_u");
+    props.find("alpha_v");
+    w.add(a->where, "'" + type + "' is smooth and ignores '" + name + "'; rendered as a smooth " + type +
+                        (type == "thindielectric" ? "" : " (use 'rough" + type + "' for a rough one)"));
+  }
   props.warnUnused(w);
   finalizeMaterial(m);
   int index = int(scene_.materials.size());

@@ -251,6 +251,24 @@ TEST(Loader, CylinderIsAnOpenTubeWithOutwardNormals) {
       <point name="p0" value="1, 0, 0"/><point name="p1" value="1, 0, 0"/></shape></scene>)")), InputError);
 }
 
+// A roughness given to a smooth BSDF (scenes written for the rough variants) is ignored with
+// one warning that names what is rendered instead.
+TEST(Loader, AlphaOnSmoothBsdfsWarnsNamingTheFallback) {
+  TempDir dir;
+  Scene s = loadScene(dir.write("s.xml", R"(<scene version="3.0.0">
+    <shape type="cube"><bsdf type="dielectric"><float name="alpha" value="0.2"/></bsdf></shape>
+    <shape type="cube"><bsdf type="conductor"><float name="alpha_u" value="0.2"/><float name="alpha_v" value="0.1"/></bsdf></shape>
+  </scene>)"));
+  ASSERT_EQ(s.warnings.messages.size(), 2u);
+  EXPECT_NE(s.warnings.messages[0].find(":2: warning: 'dielectric' is smooth and ignores 'alpha'; rendered as a smooth "
+                                        "dielectric (use 'roughdielectric' for a rough one)"),
+            std::string::npos)
+      << s.warnings.messages[0];
+  EXPECT_NE(s.warnings.messages[1].find("'conductor' is smooth and ignores 'alpha_u'"), std::string::npos)
+      << s.warnings.messages[1];
+  EXPECT_EQ(s.materials[s.mesh.material[0]].kind, BsdfKind::Dielectric);
+}
+
 TEST(Loader, DegenerateTrianglesAreDroppedAndCounted) {
   TempDir dir;
   dir.write("m.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 2 0 0\nf 1 2 3\nf 1 2 4\nf 1 1 3\n");
