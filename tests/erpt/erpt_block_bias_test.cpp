@@ -12,6 +12,15 @@
 namespace erpt {
 namespace {
 
+// ERPT with every path by ERPT (the paper's configuration: no separate direct pass) and
+// `mutationsPerPixel` mutations per pixel.
+ErptSettings everyPathByErpt(int mutationsPerPixel) {
+  ErptSettings erpt;
+  erpt.mutationsPerPixel = mutationsPerPixel;
+  erpt.directSamples = -1;
+  return erpt;
+}
+
 // Sixteen ERPT renders (64x64, box filter, `spp` seeds per pixel, `erpt` options, seeds from
 // `seed`) against eight path-traced ones of 512 spp, per 8x8 block (support/block_bias.h).
 void expectErptMatchesPathTracerBlockByBlock(const Scene& scene, int spp, const ErptSettings& erpt, uint64_t seed) {
@@ -31,9 +40,7 @@ void expectErptMatchesPathTracerBlockByBlock(const Scene& scene, int spp, const 
 // worst |z| 7.0 per 8x8 block (the diffuse Cornell box: 1.1 and 2.6), with the image mean
 // right. The paper's configuration: ERPT does direct light too.
 TEST(StatisticalErpt, PlasticBoxMatchesPathTracerBlockByBlock) {
-  ErptSettings erpt;
-  erpt.mutationsPerPixel = 800;
-  erpt.directSamples = -1;
+  ErptSettings erpt = everyPathByErpt(800);
   expectErptMatchesPathTracerBlockByBlock(loadScene(test::sourceDir() + "/tests/data/plastic-box.xml"), 32, erpt, 1000);
 }
 
@@ -46,9 +53,7 @@ TEST(StatisticalErpt, PlasticBoxMatchesPathTracerBlockByBlock) {
 // under the bounds, since caustic perturbations carry a small part of this image): the
 // detailed-balance and caustic-only stationarity tests catch that (both red with it dropped).
 TEST(StatisticalErpt, DiskLensAndVeachCausticMatchPathTracerBlockByBlock) {
-  ErptSettings erpt;
-  erpt.mutationsPerPixel = 400;
-  erpt.directSamples = -1;
+  ErptSettings erpt = everyPathByErpt(400);
   erpt.lensShape = LensShape::Disk;
   erpt.causticAngle = CausticAngle::Veach;
   expectErptMatchesPathTracerBlockByBlock(loadScene(test::sourceDir() + "/scenes/default/scene.xml"), 16, erpt, 3000);
@@ -61,9 +66,7 @@ TEST(StatisticalErpt, DiskLensAndVeachCausticMatchPathTracerBlockByBlock) {
 TEST(StatisticalErpt, SphereLightAndGlassSphereMatchPathTracerBlockByBlock) {
   const Scene scene = loadScene(test::sourceDir() + "/tests/data/sphere-lights.xml");
   ASSERT_EQ(scene.spheres.count(), 3u);
-  ErptSettings erpt;
-  erpt.mutationsPerPixel = 400;
-  erpt.directSamples = -1;
+  ErptSettings erpt = everyPathByErpt(400);
   expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 5000);
 }
 
@@ -74,9 +77,7 @@ TEST(StatisticalErpt, RoughGlassAndPhongMatchPathTracerBlockByBlock) {
   const Scene scene = loadScene(test::sourceDir() + "/tests/data/rough-glass.xml");
   ASSERT_EQ(scene.materials[scene.spheres.material[0]].kind, BsdfKind::RoughDielectric);
   ASSERT_EQ(scene.materials[scene.spheres.material[2]].kind, BsdfKind::Phong);
-  ErptSettings erpt;
-  erpt.mutationsPerPixel = 400;
-  erpt.directSamples = -1;
+  ErptSettings erpt = everyPathByErpt(400);
   expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 7000);
 }
 
@@ -87,9 +88,7 @@ TEST(StatisticalErpt, SpotLightCausticMatchesPathTracerBlockByBlock) {
   const Scene scene = loadScene(test::sourceDir() + "/tests/data/spot-caustic.xml");
   ASSERT_EQ(scene.emitters.size(), 1u);
   ASSERT_TRUE(scene.emitters[0].spot);
-  ErptSettings erpt;
-  erpt.mutationsPerPixel = 200;  // enough: leaving the falloff out of f gives mean z^2 ~8600
-  erpt.directSamples = -1;
+  ErptSettings erpt = everyPathByErpt(200);  // enough: leaving the falloff out of f gives mean z^2 ~8600
   expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 9000);
 }
 
@@ -97,9 +96,7 @@ TEST(StatisticalErpt, SpotLightCausticMatchesPathTracerBlockByBlock) {
 // the area light's seeds start chains; the sum must still be the path tracer's image.
 TEST(StatisticalErpt, DirectionalLightSeedsInPlaceMatchPathTracerBlockByBlock) {
   const Scene scene = loadScene(test::sourceDir() + "/tests/data/directional.xml");
-  ErptSettings erpt;
-  erpt.mutationsPerPixel = 200;
-  erpt.directSamples = -1;
+  ErptSettings erpt = everyPathByErpt(200);
   {
     RenderSettings s;
     s.integrator = "erpt";

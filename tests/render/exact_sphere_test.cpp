@@ -246,35 +246,6 @@ TEST(StatisticalExactSphere, SphereLightOverPlaneMatchesClosedForm) {
   }
 }
 
-// A convex diffuse sphere in a uniform environment sees the environment over its whole
-// hemisphere: every point reflects a * L, at any depth (white furnace of an exact sphere).
-TEST(StatisticalExactSphere, DiffuseSphereInConstantEnvironmentReflectsAlbedo) {
-  TempDir dir;
-  Scene scene = loadScene(dir.write("s.xml", R"(<scene version="3.0.0">
-    <sensor type="perspective"><float name="fov" value="10"/>
-      <transform name="to_world"><lookat origin="0,0,8" target="0,0,0" up="0,1,0"/></transform>
-      <film type="hdrfilm"><integer name="width" value="16"/><integer name="height" value="16"/>
-        <rfilter type="box"/></film></sensor>
-    <shape type="sphere"><float name="radius" value="1"/>
-      <bsdf type="diffuse"><rgb name="reflectance" value="0.6, 0.3, 0.9"/></bsdf></shape>
-    <emitter type="constant"><rgb name="radiance" value="2"/></emitter>
-  </scene>)"));
-  RenderSettings s;
-  s.integrator = "path";
-  s.spp = 1024;
-  s.seed = 5;
-  RenderStats stats;
-  const RgbImage img = render(scene, s, stats);
-  // The central 8x8 pixels see only the sphere (it fills a 2 * atan(1/8) = 14 degree disk).
-  Color sum(0.0f);
-  for (int y = 4; y < 12; ++y)
-    for (int x = 4; x < 12; ++x) sum += img.at(x, y);
-  const Color mean = sum / 64.0f;
-  EXPECT_NEAR(mean.x, 1.2f, 0.01f * 1.2f);
-  EXPECT_NEAR(mean.y, 0.6f, 0.01f * 0.6f);
-  EXPECT_NEAR(mean.z, 1.8f, 0.01f * 1.8f);
-}
-
 // The default scene's glass and mirror spheres, exact and as 256 x 512 tessellations:
 // independent renders of each, block by block (8x8 blocks of 64x64). Facets would show as
 // bias in the caustic under the glass sphere and in the mirror's reflections.

@@ -33,6 +33,15 @@ Color furnaceMean(const std::string& bsdf) {
   return test::meanOf(img);
 }
 
+// A convex diffuse sphere sees the environment over its whole hemisphere: every point
+// reflects albedo * L, at any depth (an exact sphere: its normals are the true radial ones).
+TEST(StatisticalFurnace, DiffuseSphereReflectsItsAlbedo) {
+  const Color m = furnaceMean(R"(<bsdf type="diffuse"><rgb name="reflectance" value="0.6, 0.3, 0.9"/></bsdf>)");
+  EXPECT_NEAR(m.x, 1.2f, 0.01f * 1.2f);
+  EXPECT_NEAR(m.y, 0.6f, 0.01f * 0.6f);
+  EXPECT_NEAR(m.z, 1.8f, 0.01f * 1.8f);
+}
+
 TEST(StatisticalFurnace, SmoothGlassSphereIsInvisible) {
   const Color m = furnaceMean(R"(<bsdf type="dielectric"><float name="int_ior" value="1.5"/></bsdf>)");
   EXPECT_NEAR(m.y, 2.0f, 0.01f * 2.0f);
