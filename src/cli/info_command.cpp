@@ -29,8 +29,14 @@ const char* kindName(BsdfKind k) {
   }
   return "?";
 }
-const char* emitterName(EmitterKind k) {
-  return k == EmitterKind::Area ? "area" : k == EmitterKind::Point ? "point" : k == EmitterKind::Directional ? "directional" : "constant";
+const char* emitterName(const Emitter& e) {
+  switch (e.kind) {
+    case EmitterKind::Area: return "area";
+    case EmitterKind::Point: return e.spot ? "spot" : "point";
+    case EmitterKind::Directional: return "directional";
+    case EmitterKind::Constant: return "constant";
+  }
+  return "?";
 }
 }  // namespace
 
@@ -56,7 +62,7 @@ int runInfo(const InfoArgs& a) {
   }
   std::cout << "lights:     " << scene.emitters.size() << "\n";
   for (const Emitter& e : scene.emitters)
-    std::cout << "  " << emitterName(e.kind) << " (" << e.radiance.x << ", " << e.radiance.y << ", " << e.radiance.z
+    std::cout << "  " << emitterName(e) << " (" << e.radiance.x << ", " << e.radiance.y << ", " << e.radiance.z
               << ")\n";
   std::cout << "materials:  " << scene.materials.size() << "\n";
   for (const Material& m : scene.materials)

@@ -1,4 +1,5 @@
-// `erpt diff` (numbers and heat map) and `erpt compare` (table, JSON, plot) from the command line.
+// `erpt diff` (numbers and heat map), `erpt compare` (table, JSON, plot) and `erpt info` from
+// the command line.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -15,6 +16,27 @@ namespace erpt {
 namespace {
 
 std::string cornell() { return test::sharedScenesDir() + "/cornell-box/scene.xml"; }
+
+// `erpt info` names every shape, light and material kind the loader made, exact spheres and
+// tessellated ones included.
+TEST(InfoCli, ListsShapesLightsAndMaterials) {
+  test::TempDir dir;
+  const std::string scene = dir.write("s.xml", R"(<scene version="3.0.0">
+    <shape type="sphere" id="ball"><float name="radius" value="0.5"/>
+      <bsdf type="roughdielectric"><float name="alpha" value="0.2"/></bsdf></shape>
+    <shape type="cylinder"><bsdf type="phong"/></shape>
+    <emitter type="spot"><rgb name="intensity" value="5"/></emitter>
+    <emitter type="directional"><rgb name="irradiance" value="2"/></emitter>
+  </scene>)");
+  const test::CommandResult r = test::runCli("info " + scene);
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  for (const char* line : {"spheres:    1 (exact)", "sphere 'ball': exact sphere, radius 0.5", "cylinder: 2048 triangles",
+                           "  spot (5, 5, 5)", "  directional (2, 2, 2)", "roughdielectric", "phong"})
+    EXPECT_NE(r.output.find(line), std::string::npos) << line << "\n" << r.output;
+  const test::CommandResult t = test::runCli("info --tessellate-spheres " + scene);
+  EXPECT_NE(t.output.find("spheres:    0 (exact)"), std::string::npos) << t.output;
+  EXPECT_NE(t.output.find("sphere 'ball': 261120 triangles"), std::string::npos) << t.output;
+}
 
 RgbImage row(std::initializer_list<Color> pixels) {
   RgbImage img;
