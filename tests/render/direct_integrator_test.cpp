@@ -43,21 +43,27 @@ TEST(StatisticalDirect, FurnaceSphereMatchesClosedForm) {
   EXPECT_EQ(stats.invalidSamples, 0u);
 }
 
+// A camera looking straight down from (0, 0, 3) at a diffuse plane (albedo 0.6) at z = 0,
+// box filter; `extra` adds the lights (and any occluders).
+std::string planeScene(int fovDegrees, int size, const std::string& extra) {
+  const std::string n = std::to_string(size);
+  return R"(<scene version="3.0.0">
+    <sensor type="perspective"><float name="fov" value=")" + std::to_string(fovDegrees) + R"("/>
+      <transform name="to_world"><lookat origin="0,0,3" target="0,0,0" up="0,1,0"/></transform>
+      <film type="hdrfilm"><integer name="width" value=")" + n + R"("/><integer name="height" value=")" + n + R"("/>
+        <rfilter type="box"/></film></sensor>
+    <shape type="rectangle"><transform name="to_world"><scale value="4"/></transform>
+      <bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></shape>)" + extra + "</scene>";
+}
+
 TEST(Direct, PointLightOverDiffusePlaneMatchesInverseSquareLaw) {
   // Camera above a diffuse plane (albedo a) lit by a point light of intensity I at height h:
   // L(p) = a/pi * I * cos(theta) / d^2 with cos(theta) = h / d. Next-event estimation of a
   // point light has no noise, so each pixel must match to within the pixel footprint.
   TempDir dir;
   const float a = 0.6f, I = 5.0f, h = 1.0f;
-  Scene scene = loadScene(dir.write("s.xml", R"(<scene version="3.0.0">
-    <sensor type="perspective"><float name="fov" value="50"/>
-      <transform name="to_world"><lookat origin="0,0,3" target="0,0,0" up="0,1,0"/></transform>
-      <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="32"/>
-        <rfilter type="box"/></film></sensor>
-    <shape type="rectangle"><transform name="to_world"><scale value="4"/></transform>
-      <bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></shape>
-    <emitter type="point"><point name="position" value="0.3, -0.2, 1"/><rgb name="intensity" value="5"/></emitter>
-  </scene>)"));
+  Scene scene = loadScene(dir.write("s.xml", planeScene(50, 32, R"(
+    <emitter type="point"><point name="position" value="0.3, -0.2, 1"/><rgb name="intensity" value="5"/></emitter>)")));
   RenderSettings s;
   s.integrator = "direct";
   s.spp = 16;
@@ -84,17 +90,10 @@ TEST(Direct, PointLightOverDiffusePlaneMatchesInverseSquareLaw) {
 TEST(Direct, SpotLightFollowsItsFalloffCurve) {
   TempDir dir;
   const float a = 0.6f, I = 5.0f, h = 1.0f, cutoff = 45, beam = 25;
-  Scene scene = loadScene(dir.write("s.xml", R"(<scene version="3.0.0">
-    <sensor type="perspective"><float name="fov" value="60"/>
-      <transform name="to_world"><lookat origin="0,0,3" target="0,0,0" up="0,1,0"/></transform>
-      <film type="hdrfilm"><integer name="width" value="96"/><integer name="height" value="96"/>
-        <rfilter type="box"/></film></sensor>
-    <shape type="rectangle"><transform name="to_world"><scale value="4"/></transform>
-      <bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></shape>
+  Scene scene = loadScene(dir.write("s.xml", planeScene(60, 96, R"(
     <emitter type="spot"><rgb name="intensity" value="5"/><float name="cutoff_angle" value="45"/>
       <float name="beam_width" value="25"/>
-      <transform name="to_world"><lookat origin="0.1, -0.2, 1" target="0.1, -0.2, 0" up="0,1,0"/></transform></emitter>
-  </scene>)"));
+      <transform name="to_world"><lookat origin="0.1, -0.2, 1" target="0.1, -0.2, 0" up="0,1,0"/></transform></emitter>)")));
   RenderSettings s;
   s.integrator = "direct";
   s.spp = 16;
@@ -127,16 +126,9 @@ TEST(Direct, SpotLightFollowsItsFalloffCurve) {
 // (next-event rays towards the light are blocked), for both integrators that do NEE.
 TEST(Direct, DirectionalLightGivesUniformLambertShading) {
   TempDir dir;
-  Scene scene = loadScene(dir.write("s.xml", R"(<scene version="3.0.0">
-    <sensor type="perspective"><float name="fov" value="50"/>
-      <transform name="to_world"><lookat origin="0,0,3" target="0,0,0" up="0,1,0"/></transform>
-      <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="32"/>
-        <rfilter type="box"/></film></sensor>
-    <shape type="rectangle"><transform name="to_world"><scale value="4"/></transform>
-      <bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf></shape>
+  Scene scene = loadScene(dir.write("s.xml", planeScene(50, 32, R"(
     <shape type="cube"><transform name="to_world"><scale value="0.2"/><translate x="-0.6" y="0.6" z="0.5"/></transform></shape>
-    <emitter type="directional"><rgb name="irradiance" value="3"/><vector name="direction" value="0.6, 0, -0.8"/></emitter>
-  </scene>)"));
+    <emitter type="directional"><rgb name="irradiance" value="3"/><vector name="direction" value="0.6, 0, -0.8"/></emitter>)")));
   const float expected = 0.6f / kPi * 3.0f * 0.8f;
   for (const char* integrator : {"direct", "path"}) {
     RenderSettings s;
