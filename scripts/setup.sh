@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
   g++ cmake ninja-build pkg-config
-  libembree-dev libtbb-dev libopenimageio-dev libxsimd-dev
+  libembree-dev libtbb-dev libopenimageio-dev libopenexr-dev libpng-dev libxsimd-dev
   libpugixml-dev libtinyobjloader-dev libcli11-dev zlib1g-dev
   libgtest-dev libbenchmark-dev
 )

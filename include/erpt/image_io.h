@@ -1,4 +1,4 @@
-// Image files through OpenImageIO. Writes are atomic: the image goes to a temporary file
+// Image files (EXR and PNG directly, every other format through OpenImageIO). Writes are atomic: the image goes to a temporary file
 // beside the target and is renamed over it only when complete, so a failed or interrupted
 // run never leaves a partial image behind.
 #pragma once
@@ -18,12 +18,12 @@ struct RgbImage {
   const Color& at(int x, int y) const { return pixels[size_t(y) * width + x]; }
 };
 
-// Reads any format OpenImageIO knows. `isSrgbEncoded` tells whether the file stores
+// Reads EXR, PNG and any other format OpenImageIO knows. `isSrgbEncoded` tells whether the file stores
 // display-encoded (sRGB) values, as 8-bit PNG/JPEG do. Throws InputError naming the file.
 RgbImage readImage(const std::string& path, bool* isSrgbEncoded = nullptr);
 
-// Linear float EXR (or any format by extension; low dynamic range formats get the PNG
-// treatment below). Throws std::runtime_error on failure, leaving no file behind.
+// Linear float EXR, or any format OpenImageIO writes by extension (.png gets the tone-mapped
+// treatment of writePngAtomic). Throws std::runtime_error on failure, leaving no file behind.
 void writeImageAtomic(const std::string& path, const RgbImage& image);
 // Tone-mapped display image: clamp to [0,1], sRGB transfer curve, 8 bits.
 void writePngAtomic(const std::string& path, const RgbImage& image);

@@ -2,14 +2,15 @@
 
 #include <unistd.h>
 
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
 
-#include <OpenImageIO/imageio.h>
-
 #include "erpt/error.h"
+#include "image_formats.h"
 
 namespace erpt {
 
@@ -27,7 +28,15 @@ std::string temporaryPathFor(const std::string& path) {
   return (dir / ("." + p.stem().string() + ".partial-" + std::to_string(getpid()) + p.extension().string())).string();
 }
 
-void writeAtomic(const std::string& path, int width, int height, OIIO::TypeDesc type, const void* data) {
+std::string lowerExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+// Writes through `write(tmp, error)` to the temporary file, then renames it over `path`.
+template <class Write>
+void writeAtomic(const std::string& path, Write write) {
   std::string tmp = temporaryPathFor(path);
   std::snprintf(pendingPath, sizeof(pendingPath), "%s", tmp.c_str());
   auto fail = [&](const std::string& why) {
@@ -35,12 +44,8 @@ void writeAtomic(const std::string& path, int width, int height, OIIO::TypeDesc 
     pendingPath[0] = 0;
     throw std::runtime_error("cannot write '" + path + "': " + why);
   };
-  auto out = OIIO::ImageOutput::create(tmp);
-  if (!out) fail("unsupported image format (" + OIIO::geterror() + ")");
-  OIIO::ImageSpec spec(width, height, 3, type);
-  if (!out->open(tmp, spec)) fail(out->geterror());
-  if (!out->write_image(type, data)) fail(out->geterror());
-  if (!out->close()) fail(out->geterror());
+  std::string error;
+  if (!write(tmp, error)) fail(error);
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) fail(ec.message());
@@ -54,36 +59,34 @@ void removePendingImageFiles() {
 }
 
 RgbImage readImage(const std::string& path, bool* isSrgbEncoded) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError({path, 0}, "cannot read image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
-    throw InputError({path, 0}, "image has no pixels");
-  std::vector<float> data(size_t(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data.data()))
-    throw InputError({path, 0}, "cannot read image: " + in->geterror());
   RgbImage img;
-  img.width = spec.width;
-  img.height = spec.height;
-  img.pixels.resize(size_t(spec.width) * spec.height);
-  for (size_t i = 0; i < img.pixels.size(); ++i) {
-    const float* px = &data[i * spec.nchannels];
-    img.pixels[i] = spec.nchannels >= 3 ? Color(px[0], px[1], px[2]) : Color(px[0]);
-  }
-  if (isSrgbEncoded) {
-    std::string space = spec.get_string_attribute("oiio:ColorSpace");
-    *isSrgbEncoded = space == "sRGB" || (space.empty() && (spec.format == OIIO::TypeDesc::UINT8 ||
-                                                           spec.format == OIIO::TypeDesc::UINT16));
-  }
+  bool srgb = false;
+  std::string error;
+  const std::string ext = lowerExtension(path);
+  const bool ok = ext == ".exr"   ? image_formats::readExr(path, img, error)
+                  : ext == ".png" ? image_formats::readPng(path, img, srgb, error)
+                                  : image_formats::readWithOiio(path, img, srgb, error);
+  if (!ok) throw InputError({path, 0}, "cannot read image: " + error);
+  if (img.width <= 0 || img.height <= 0) throw InputError({path, 0}, "image has no pixels");
+  if (isSrgbEncoded) *isSrgbEncoded = srgb;
   return img;
 }
 
 void writeImageAtomic(const std::string& path, const RgbImage& image) {
-  writeAtomic(path, image.width, image.height, OIIO::TypeDesc::FLOAT, image.pixels.data());
+  const std::string ext = lowerExtension(path);
+  if (ext == ".png") return writePngAtomic(path, image);
+  writeAtomic(path, [&](const std::string& tmp, std::string& error) {
+    return ext == ".exr" ? image_formats::writeExr(tmp, image, error)
+                         : image_formats::writeWithOiio(tmp, image.width, image.height, true, image.pixels.data(), error);
+  });
 }
 
 void writeRgb8Atomic(const std::string& path, int width, int height, const uint8_t* rgb) {
-  writeAtomic(path, width, height, OIIO::TypeDesc::UINT8, rgb);
+  const bool png = lowerExtension(path) == ".png";
+  writeAtomic(path, [&](const std::string& tmp, std::string& error) {
+    return png ? image_formats::writePng8(tmp, width, height, rgb, error)
+               : image_formats::writeWithOiio(tmp, width, height, false, rgb, error);
+  });
 }
 
 void writePngAtomic(const std::string& path, const RgbImage& image) {
@@ -95,7 +98,7 @@ void writePngAtomic(const std::string& path, const RgbImage& image) {
       v = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
       bytes[i * 3 + c] = uint8_t(std::lround(v * 255.0f));
     }
-  writeAtomic(path, image.width, image.height, OIIO::TypeDesc::UINT8, bytes.data());
+  writeRgb8Atomic(path, image.width, image.height, bytes.data());
 }
 
 }  // namespace erpt

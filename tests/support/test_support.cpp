@@ -30,8 +30,10 @@ std::string TempDir::write(const std::string& name, const std::string& contents)
   return p;
 }
 
-CommandResult runCli(const std::string& args) {
-  std::string cmd = std::string(ERPT_CLI_PATH) + " " + args + " 2>&1";
+CommandResult runCli(const std::string& args) { return runCliWithEnvironment("", args); }
+
+CommandResult runCliWithEnvironment(const std::string& environment, const std::string& args) {
+  std::string cmd = environment + " " + std::string(ERPT_CLI_PATH) + " " + args + " 2>&1";
   CommandResult r{0, ""};
   FILE* pipe = popen(cmd.c_str(), "r");
   if (!pipe) return {-1, "popen failed"};

@@ -25,6 +25,8 @@ struct CommandResult {
 };
 // Runs the built `erpt` binary with the given arguments (a shell fragment).
 CommandResult runCli(const std::string& args);
+// The same with environment assignments before the command (e.g. "LD_DEBUG=files").
+CommandResult runCliWithEnvironment(const std::string& environment, const std::string& args);
 
 std::string sharedScenesDir();  // ../shared/scenes beside the project
 std::string sourceDir();

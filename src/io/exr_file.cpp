@@ -1,0 +1,69 @@
+// OpenEXR files: RGB float, ZIP-compressed (what OpenImageIO wrote before, read the same by
+// every EXR viewer). Reads R, G, B (or Y) of the first part, any pixel type, any data window.
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+
+#include "image_formats.h"
+
+namespace erpt::image_formats {
+
+namespace {
+constexpr const char* kRgb[3] = {"R", "G", "B"};
+}
+
+bool writeExr(const std::string& path, const RgbImage& image, std::string& error) {
+  try {
+    Imf::Header header(image.width, image.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    for (const char* c : kRgb) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+    Imf::FrameBuffer frame;
+    char* base = reinterpret_cast<char*>(const_cast<Color*>(image.pixels.data()));
+    for (int c = 0; c < 3; ++c)
+      frame.insert(kRgb[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), sizeof(Color),
+                                       sizeof(Color) * size_t(image.width)));
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(frame);
+    file.writePixels(image.height);
+    return true;
+  } catch (const std::exception& e) {
+    error = e.what();
+    return false;
+  }
+}
+
+bool readExr(const std::string& path, RgbImage& image, std::string& error) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i window = file.header().dataWindow();
+    const long width = long(window.max.x) - window.min.x + 1, height = long(window.max.y) - window.min.y + 1;
+    if (width <= 0 || height <= 0 || width * height > (1l << 30)) {
+      error = "image has no pixels or an absurd data window";
+      return false;
+    }
+    const Imf::ChannelList& channels = file.header().channels();
+    const bool rgb = channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
+    if (!rgb && !channels.findChannel("Y")) {
+      error = "no R, G, B or Y channel";
+      return false;
+    }
+    image.width = int(width);
+    image.height = int(height);
+    image.pixels.assign(size_t(width) * size_t(height), Color(0.0f));
+    Imf::FrameBuffer frame;
+    char* base = reinterpret_cast<char*>(image.pixels.data());
+    for (int c = 0; c < 3; ++c)
+      frame.insert(rgb ? kRgb[c] : "Y",
+                   Imf::Slice::Make(Imf::FLOAT, base + c * sizeof(float), window, sizeof(Color), sizeof(Color) * size_t(width)));
+    file.setFrameBuffer(frame);
+    file.readPixels(window.min.y, window.max.y);
+    return true;
+  } catch (const std::exception& e) {
+    error = e.what();
+    return false;
+  }
+}
+
+}  // namespace erpt::image_formats
