@@ -64,9 +64,10 @@ void stageShadowResolve(const RayQueue& shadowRays, const PathSlotQueue& slots, 
 
 // Stable compaction: keeps the slots with alive != 0, in order, moving their path ids and
 // rays to the front of `outSlots` / `outRays` (the per-bounce scratch columns of a slot do
-// not move). Returns the number kept.
+// not move). Returns the number kept. `endedPaths` (optional, room for `count`) receives the
+// path ids of the other slots, in order.
 size_t stageCompact(const PathSlotQueue& slots, const RayQueue& rays, PathSlotQueue& outSlots, RayQueue& outRays,
-                    size_t count, size_t grain);
+                    size_t count, size_t grain, uint32_t* endedPaths = nullptr);
 
 // Direct lighting at the first hit: adds emission seen directly, fills `shadowRays` with
 // next-event rays (contribution kept in samples.shadow*) and `bsdfRays` with BSDF-sampled

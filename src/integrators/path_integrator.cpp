@@ -1,12 +1,24 @@
 // `--integrator path`: the wavefront path tracer (BSDF importance sampling, next-event
 // estimation with MIS, Russian roulette). It is also the Monte Carlo seed sampler of ERPT.
 //
-// Samples are processed in batches of paths. Each bounce runs the stages
+// A wavefront is a queue of paths in flight. Each bounce runs the stages
 //   intersect -> shade -> shadow (occlusion stream) -> compact
-// over the live slots only, until no path of the batch is left; then the batch's radiance
-// goes to the film in path order, so the image does not depend on the thread count.
+// over its live slots; a path that ends gives its slot to the next sample at once (path
+// regeneration, as in Cycles), so the ray streams stay full instead of draining to a tail.
+// Rendering, every task of the thread pool runs its own small wavefront (kTaskQueue paths,
+// cache-resident) over a chunk of samples, with no synchronisation per bounce. Recording
+// seeds (ERPT's seed pass), one wavefront of a whole batch runs each stage across the threads
+// and drains before the batch's seeds go to the sink. Either way each sample's radiance lands
+// at its index in the batch, and the film adds a batch in sample order: the image does not
+// depend on the thread count or on how the wavefronts were scheduled.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <mutex>
+#include <numeric>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
 
 #include "erpt/film.h"
 #include "erpt/film_splat.h"
@@ -18,50 +30,28 @@
 namespace erpt {
 
 namespace {
-constexpr size_t kBatchPaths = 1 << 17;
+constexpr size_t kBatchPaths = 1 << 17;  // samples that reach the film (and the seed sink) together
+constexpr size_t kChunkSamples = 16384;  // one task's share of a batch
+constexpr size_t kTaskQueue = 4096;      // paths in flight in one task's wavefront
 constexpr size_t kGrain = 512;
 
-void initPaths(PathQueue& paths, PathSlotQueue& slots, const PathSampleSet& samples, size_t first, IndexRange r) {
-  for (size_t i = r.begin; i < r.end; ++i) {
-    samples.at(first + i, paths.pixel[i], paths.sample[i]);
-    paths.runIndex[i] = uint32_t(first + i);
-    paths.depth[i] = 1;
-    paths.throughputSet(i, Color(1.0f));
-    paths.radianceSet(i, Color(0.0f));
-    paths.prevPdf[i] = 0;
-    paths.pLength[i] = 1;
-    paths.lastVertex[i] = -1;
-    slots.path[i] = uint32_t(i);
-  }
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Seed recording: vertex i of the history is the eye of path i.
-void writeEyeVertices(VertexQueue& history, PathQueue& paths, Vec3 eye, IndexRange r) {
-  VertexQueue::Row v;  // kind kEyeVertex, no material, no emitter, no parent
-  v.p = eye;
-  v.pdfForward = 1;  // the camera ray: density of the film position (filter-sampled)
-  for (size_t i = r.begin; i < r.end; ++i) {
-    history.setRow(i, v);
-    paths.lastVertex[i] = int32_t(i);
-  }
-}
-}  // namespace
-
-void tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, const PathTraceOutput& out,
-                      RenderStats& stats) {
-  const Tracer& tracer = setup.tracer;
-  const StageContext& ctx = setup.ctx;
-  const size_t total = samples.count;
+// The queues of one wavefront, and the per-slot inputs and outputs of its camera-ray stage.
+struct PathWavefront {
   PathQueue paths;
   PathSlotQueue slots[2];
   RayQueue rays[2], shadowRays;
   HitQueue hits;
-  VertexQueue history;
-  std::atomic<uint64_t> rayCount{0};
-  uint64_t invalid = 0;
+  std::vector<uint32_t> startPixel, startSample, freeIds, ended;
+  std::vector<float> startX, startY;
+  size_t capacity = 0;
 
-  for (size_t first = 0; first < total; first += kBatchPaths) {
-    const size_t n = std::min(kBatchPaths, total - first);
+  void reserve(size_t n) {
+    if (capacity == n) return;
+    capacity = n;
     paths.resize(n);
     for (int b = 0; b < 2; ++b) {
       slots[b].resize(n);
@@ -69,59 +59,196 @@ void tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
     }
     prepareRays(shadowRays, n);
     hits.resize(n);
-    int cur = 0;
-    const bool recording = out.seeds != nullptr;
-    if (recording) history.resize(n);
-    forEachRange("generate", n, kGrain, [&](IndexRange r) {
-      initPaths(paths, slots[cur], samples, first, r);
-      stageGenerateCameraRays(ctx, paths.pixel.data(), paths.sample.data(), rays[cur], r, paths.filmX.data(),
-                              paths.filmY.data());
-      if (recording) writeEyeVertices(history, paths, setup.camera.position(), r);
-    }, &stats.stages);
+    for (auto* v : {&startPixel, &startSample, &ended}) v->resize(n);
+    startX.resize(n);
+    startY.resize(n);
+  }
+};
 
-    VertexHistory bounceHistory{recording ? &history : nullptr, n};
-    for (size_t live = n, bounce = 0; live > 0; ++bounce) {
-      if (recording) history.resize(bounceHistory.base + live);
-      RayCoherence coherence = bounce == 0 ? RayCoherence::Coherent : RayCoherence::Incoherent;
-      rayCount += live;
-      forEachRange("intersect", live, kGrain,
-                   [&](IndexRange r) { tracer.intersect(rays[cur], hits, r, coherence); }, &stats.stages);
-      forEachRange("shade", live, kGrain,
-                   [&](IndexRange r) {
-                     stageShadePath(ctx, paths, slots[cur], rays[cur], hits, shadowRays, bounceHistory, r);
-                   },
-                   &stats.stages);
-      forEachRange("shadow", live, kGrain, [&](IndexRange r) {
-        uint64_t traced = 0;
-        for (size_t k = r.begin; k < r.end; ++k) traced += shadowRays.tnear[k] <= shadowRays.tfar[k];
-        rayCount += traced;
-        tracer.occluded(shadowRays, r);
-        stageShadowResolve(shadowRays, slots[cur], paths, r);
-      }, &stats.stages);
-      auto start = std::chrono::steady_clock::now();
-      if (recording) {
-        stageRecordSeeds(ctx, paths, slots[cur], hits, shadowRays, bounceHistory, live, *out.seeds);
-        stats.stages.add("record seeds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-        start = std::chrono::steady_clock::now();
+// Radiance and film position of every sample of a batch, by index in the batch.
+struct BatchRadiance {
+  std::vector<uint32_t> pixel;
+  std::vector<float> x, y, r, g, b;
+  void resize(size_t n) {
+    pixel.resize(n);
+    for (auto* v : {&x, &y, &r, &g, &b}) v->resize(n);
+  }
+  Color at(size_t i) const { return Color(r[i], g[i], b[i]); }
+};
+
+// Runs a stage over [0, n): across the threads (forEachRange) or inline in the calling task.
+struct StageRunner {
+  bool parallel;
+  StageTimes& times;
+  template <class Fn>
+  void operator()(const char* stage, size_t n, const Fn& fn) const {
+    if (parallel) return forEachRange(stage, n, kGrain, fn, &times);
+    const auto start = std::chrono::steady_clock::now();
+    if (n > 0) fn(IndexRange{0, n});
+    times.add(stage, secondsSince(start));
+  }
+  size_t grain(size_t n) const { return parallel ? kGrain : std::max<size_t>(n, 1); }
+};
+
+// Seed recording: where the seeds go and the batch's vertex history.
+struct SeedRecording {
+  SeedStore& seeds;
+  VertexQueue history;
+};
+
+// Starts samples first + j (j in r) in the free path ids freeIds[j], in slots firstSlot + j.
+void startPaths(PathWavefront& w, int cur, const PathSampleSet& samples, size_t first, size_t firstSlot, IndexRange r) {
+  PathQueue& paths = w.paths;
+  for (size_t j = r.begin; j < r.end; ++j) {
+    const uint32_t id = w.freeIds[j];
+    const size_t slot = firstSlot + j;
+    samples.at(first + j, paths.pixel[id], paths.sample[id]);
+    paths.runIndex[id] = uint32_t(first + j);
+    paths.depth[id] = 1;
+    paths.throughputSet(id, Color(1.0f));
+    paths.radianceSet(id, Color(0.0f));
+    paths.prevPdf[id] = 0;
+    paths.pLength[id] = 1;
+    paths.lastVertex[id] = -1;
+    w.slots[cur].path[slot] = id;
+    w.startPixel[slot] = paths.pixel[id];
+    w.startSample[slot] = paths.sample[id];
+  }
+}
+
+// Seed recording: the eye vertex of path id i is vertex i of the history.
+void writeEyeVertices(VertexQueue& history, PathQueue& paths, Vec3 eye, const uint32_t* ids, IndexRange r) {
+  VertexQueue::Row v;  // kind kEyeVertex, no material, no emitter, no parent
+  v.p = eye;
+  v.pdfForward = 1;  // the camera ray: density of the film position (filter-sampled)
+  for (size_t j = r.begin; j < r.end; ++j) {
+    history.setRow(ids[j], v);
+    paths.lastVertex[ids[j]] = int32_t(ids[j]);
+  }
+}
+
+// Traces samples [first, first + count) through wavefront `w` with `capacity` paths in flight.
+// Each sample's radiance goes to out[sample - outFirst]. Recording seeds, count <= capacity:
+// all samples start at once and the wavefront drains.
+void traceSamples(const RenderSetup& setup, const PathSampleSet& samples, size_t first, size_t count, size_t capacity,
+                  PathWavefront& w, const StageRunner& run, BatchRadiance& out, size_t outFirst, SeedRecording* rec,
+                  std::atomic<uint64_t>& rayCount) {
+  const Tracer& tracer = setup.tracer;
+  const StageContext& ctx = setup.ctx;
+  w.reserve(capacity);
+  w.freeIds.resize(capacity);
+  std::iota(w.freeIds.begin(), w.freeIds.end(), 0u);
+  VertexHistory bounceHistory{rec ? &rec->history : nullptr, 0};
+  size_t next = first, live = 0;
+  int cur = 0;
+  while (live > 0 || next < first + count) {
+    // Regeneration: the next samples take the free path ids, in slots after the live ones.
+    const size_t firstNew = live;
+    const size_t m = std::min(w.freeIds.size(), first + count - next);
+    if (m > 0) {
+      if (rec) {
+        rec->history.resize(m);
+        bounceHistory.base = m;
       }
-      bounceHistory.base += live;
-      live = stageCompact(slots[cur], rays[cur], slots[1 - cur], rays[1 - cur], live, kGrain);
-      stats.stages.add("compact", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-      cur = 1 - cur;
+      run("generate", m, [&](IndexRange r) {
+        startPaths(w, cur, samples, next, live, r);
+        const IndexRange slotRange{live + r.begin, live + r.end};
+        stageGenerateCameraRays(ctx, w.startPixel.data(), w.startSample.data(), w.rays[cur], slotRange, w.startX.data(),
+                                w.startY.data());
+        for (size_t j = r.begin; j < r.end; ++j) {
+          w.paths.filmX[w.freeIds[j]] = w.startX[live + j];
+          w.paths.filmY[w.freeIds[j]] = w.startY[live + j];
+        }
+        if (rec) writeEyeVertices(rec->history, w.paths, setup.camera.position(), w.freeIds.data(), r);
+      });
+      w.freeIds.erase(w.freeIds.begin(), w.freeIds.begin() + ptrdiff_t(m));
+      live += m;
+      next += m;
+    }
+
+    if (rec) rec->history.resize(bounceHistory.base + live);
+    rayCount += live;
+    run("intersect", live, [&](IndexRange r) {
+      // Bounce rays of the paths in flight are incoherent; the camera rays just started are not.
+      const size_t split = std::clamp(firstNew, r.begin, r.end);
+      if (split > r.begin) tracer.intersect(w.rays[cur], w.hits, IndexRange{r.begin, split}, RayCoherence::Incoherent);
+      if (r.end > split) tracer.intersect(w.rays[cur], w.hits, IndexRange{split, r.end}, RayCoherence::Coherent);
+    });
+    run("shade", live, [&](IndexRange r) {
+      stageShadePath(ctx, w.paths, w.slots[cur], w.rays[cur], w.hits, w.shadowRays, bounceHistory, r);
+    });
+    run("shadow", live, [&](IndexRange r) {
+      uint64_t traced = 0;
+      for (size_t k = r.begin; k < r.end; ++k) traced += w.shadowRays.tnear[k] <= w.shadowRays.tfar[k];
+      rayCount += traced;
+      tracer.occluded(w.shadowRays, r);
+      stageShadowResolve(w.shadowRays, w.slots[cur], w.paths, r);
+    });
+    auto start = std::chrono::steady_clock::now();
+    if (rec) {
+      stageRecordSeeds(ctx, w.paths, w.slots[cur], w.hits, w.shadowRays, bounceHistory, live, rec->seeds);
+      run.times.add("record seeds", secondsSince(start));
+      start = std::chrono::steady_clock::now();
+    }
+    bounceHistory.base += live;
+    const size_t kept =
+        stageCompact(w.slots[cur], w.rays[cur], w.slots[1 - cur], w.rays[1 - cur], live, run.grain(live), w.ended.data());
+    // The paths that ended: their radiance is final; their ids start the next samples.
+    for (size_t i = 0; i < live - kept; ++i) {
+      const uint32_t id = w.ended[i];
+      const size_t at = w.paths.runIndex[id] - outFirst;
+      out.pixel[at] = w.paths.pixel[id];
+      out.x[at] = w.paths.filmX[id], out.y[at] = w.paths.filmY[id];
+      out.r[at] = w.paths.radianceR[id], out.g[at] = w.paths.radianceG[id], out.b[at] = w.paths.radianceB[id];
+    }
+    w.freeIds.insert(w.freeIds.end(), w.ended.begin(), w.ended.begin() + ptrdiff_t(live - kept));
+    run.times.add("compact", secondsSince(start));
+    live = kept;
+    cur = 1 - cur;
+  }
+}
+}  // namespace
+
+void tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, const PathTraceOutput& out,
+                      RenderStats& stats) {
+  const size_t total = samples.count;
+  const double threads = double(setup.pool.threads());
+  std::atomic<uint64_t> rayCount{0};
+  uint64_t invalid = 0;
+  BatchRadiance batch;
+  PathWavefront shared;                                  // seed recording
+  tbb::enumerable_thread_specific<PathWavefront> local;  // rendering: one per thread
+  std::mutex timesMutex;
+
+  for (size_t first = 0; first < total; first += kBatchPaths) {
+    const size_t n = std::min(kBatchPaths, total - first);
+    batch.resize(n);
+    if (out.seeds) {
+      SeedRecording rec{*out.seeds, {}};
+      traceSamples(setup, samples, first, n, n, shared, StageRunner{true, stats.stages}, batch, first, &rec, rayCount);
+    } else {
+      tbb::parallel_for(size_t(0), (n + kChunkSamples - 1) / kChunkSamples, [&](size_t c) {
+        StageTimes times;
+        const size_t begin = first + c * kChunkSamples, count = std::min(kChunkSamples, first + n - begin);
+        traceSamples(setup, samples, begin, count, kTaskQueue, local.local(), StageRunner{false, times}, batch, first,
+                     nullptr, rayCount);
+        // Stage times of the tasks, in seconds of the whole pool (thread time / threads).
+        std::lock_guard<std::mutex> lock(timesMutex);
+        for (const auto& [stage, seconds] : times.all()) stats.stages.add(stage, seconds / threads);
+      });
     }
 
     for (size_t i = 0; i < n; ++i) {
-      const Color L = paths.radianceAt(i);
+      const Color L = batch.at(i);
       invalid += !isFinite(L);
-      if (out.film) out.film->addIfFinite(paths.pixel[i], L);
+      if (out.film) out.film->addIfFinite(batch.pixel[i], L);
     }
     if (out.splat) {
       auto start = std::chrono::steady_clock::now();
-      out.splat->addSamples(paths.filmX.data(), paths.filmY.data(), paths.radianceR.data(), paths.radianceG.data(),
-                            paths.radianceB.data(), n);
-      stats.stages.add("splat", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      out.splat->addSamples(batch.x.data(), batch.y.data(), batch.r.data(), batch.g.data(), batch.b.data(), n);
+      stats.stages.add("splat", secondsSince(start));
     }
-    if (recording && out.seedSink) {
+    if (out.seeds && out.seedSink) {
       out.seedSink(*out.seeds);
       out.seeds->clear();
     }

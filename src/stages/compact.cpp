@@ -8,7 +8,7 @@
 namespace erpt {
 
 size_t stageCompact(const PathSlotQueue& slots, const RayQueue& rays, PathSlotQueue& outSlots, RayQueue& outRays,
-                    size_t count, size_t grain) {
+                    size_t count, size_t grain, uint32_t* endedPaths) {
   const size_t blocks = (count + grain - 1) / grain;
   std::vector<size_t> offset(blocks + 1, 0);
   tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
@@ -17,10 +17,15 @@ size_t stageCompact(const PathSlotQueue& slots, const RayQueue& rays, PathSlotQu
     offset[b + 1] = n;
   });
   for (size_t b = 0; b < blocks; ++b) offset[b + 1] += offset[b];
+  const size_t kept = offset[blocks];
   tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
     size_t out = offset[b];
+    size_t ended = b * grain - offset[b];  // slots before this block that did not survive
     for (size_t k = b * grain; k < std::min(count, (b + 1) * grain); ++k) {
-      if (!slots.alive[k]) continue;
+      if (!slots.alive[k]) {
+        if (endedPaths) endedPaths[ended++] = slots.path[k];
+        continue;
+      }
       // Only the path id and the ray move: the other slot columns are per-bounce scratch
       // that the next shade pass rewrites.
       outSlots.path[out] = slots.path[k];
@@ -29,7 +34,7 @@ size_t stageCompact(const PathSlotQueue& slots, const RayQueue& rays, PathSlotQu
       ++out;
     }
   });
-  return offset[blocks];
+  return kept;
 }
 
 }  // namespace erpt

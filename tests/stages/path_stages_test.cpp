@@ -18,16 +18,19 @@ TEST(StageCompact, KeepsExactlyTheLiveSlotsInOrder) {
   prepareRays(rays, n);
   outSlots.resize(n);
   prepareRays(outRays, n);
-  std::vector<uint32_t> expected;
+  std::vector<uint32_t> expected, expectedEnded;
   for (size_t k = 0; k < n; ++k) {
     slots.path[k] = uint32_t(5000 + k);
     slots.alive[k] = (k * 7919 % 13) < 5;  // an irregular pattern
     setRay(rays, k, Vec3(float(k), 0, 0), Vec3(0, 0, 1), 0.0f, float(k));
-    if (slots.alive[k]) expected.push_back(uint32_t(5000 + k));
+    (slots.alive[k] ? expected : expectedEnded).push_back(uint32_t(5000 + k));
   }
   for (size_t grain : {1, 7, 64, 4096}) {
-    size_t kept = stageCompact(slots, rays, outSlots, outRays, n, grain);
+    std::vector<uint32_t> ended(n, 0);
+    size_t kept = stageCompact(slots, rays, outSlots, outRays, n, grain, ended.data());
     ASSERT_EQ(kept, expected.size());
+    ended.resize(n - kept);
+    EXPECT_EQ(ended, expectedEnded) << "grain " << grain;  // the retired path ids, in slot order
     for (size_t j = 0; j < kept; ++j) {
       ASSERT_EQ(outSlots.path[j], expected[j]) << "grain " << grain;
       size_t k = expected[j] - 5000;
