@@ -39,7 +39,8 @@ class LightSampler {
   // Solid-angle pdf at `ref` that sample() picks the surface point `light` (a ray from ref
   // hit it).
   float pdfSolidAngle(const SurfacePoint& light, Vec3 ref) const;
-  float pdfEnvironment() const;
+  // Solid-angle pdf that sample() picks the environment along world direction `direction`.
+  float pdfEnvironment(Vec3 direction) const;
   // Area-measure density at point p (normal n) of `primitive` of sample() from `ref`
   // (p_light * p_area).
   float pdfArea(uint32_t primitive, Vec3 ref, Vec3 p, Vec3 n) const;

@@ -9,9 +9,11 @@
 
 #include <cstdint>
 #include <string>
+#include <memory>
 #include <vector>
 
 #include "erpt/error.h"
+#include "erpt/environment_map.h"
 #include "erpt/material.h"
 #include "erpt/math.h"
 
@@ -74,6 +76,12 @@ struct Emitter {
   bool spot = false;
   Vec3 axis{0.0f, 0.0f, 1.0f};  // spot: where it shines; directional: where its light travels
   float cutoffAngle = kPi, beamWidth = kPi;
+  // Constant emitters that are Mitsuba `envmap`s: radiance by direction (then `radiance` holds
+  // the map's mean, which weighs it among the lights).
+  std::shared_ptr<const EnvironmentMap> map;
+
+  // Environment (constant or map): the radiance arriving from world direction d.
+  Color environmentRadiance(Vec3 d) const { return map ? map->eval(d) : radiance; }
 
   // The share of the intensity sent along unit direction w (leaving the light): 1 for an
   // omnidirectional point light.

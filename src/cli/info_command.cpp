@@ -34,7 +34,7 @@ const char* emitterName(const Emitter& e) {
     case EmitterKind::Area: return "area";
     case EmitterKind::Point: return e.spot ? "spot" : "point";
     case EmitterKind::Directional: return "directional";
-    case EmitterKind::Constant: return "constant";
+    case EmitterKind::Constant: return e.map ? "envmap" : "constant";
   }
   return "?";
 }
@@ -62,8 +62,9 @@ int runInfo(const InfoArgs& a) {
   }
   std::cout << "lights:     " << scene.emitters.size() << "\n";
   for (const Emitter& e : scene.emitters)
-    std::cout << "  " << emitterName(e) << " (" << e.radiance.x << ", " << e.radiance.y << ", " << e.radiance.z
-              << ")\n";
+    std::cout << "  " << emitterName(e) << " (" << e.radiance.x << ", " << e.radiance.y << ", " << e.radiance.z << ")"
+              << (e.map ? " mean, " + std::to_string(e.map->width()) + "x" + std::to_string(e.map->height()) + " pixels" : "")
+              << "\n";
   std::cout << "materials:  " << scene.materials.size() << "\n";
   for (const Material& m : scene.materials)
     std::cout << "  " << m.name << ": " << kindName(m.kind) << (m.twoSided ? ", two-sided" : "") << "\n";

@@ -113,7 +113,11 @@ float LightSampler::pdfArea(uint32_t primitive, Vec3 ref, Vec3 p, Vec3 n) const 
 
 float LightSampler::pickProbabilityOfEmitter(int emitter) const { return emitterProbability_[emitter]; }
 
-float LightSampler::pdfEnvironment() const { return environmentProbability_ * kUniformSpherePdf; }
+float LightSampler::pdfEnvironment(Vec3 direction) const {
+  if (environmentProbability_ == 0) return 0.0f;
+  const Emitter* env = scene_.environment();
+  return environmentProbability_ * (env->map ? env->map->pdf(direction) : kUniformSpherePdf);
+}
 
 bool LightSampler::finishAreaSample(uint32_t primitive, float pdfArea, Vec3 ref, Vec3 p, Vec3 n,
                                     LightSample& out) const {
@@ -219,12 +223,19 @@ bool LightSampler::sample(Vec3 ref, float uPick, float u1, float u2, LightSample
     out.delta = true;
     return true;
   }
-  out.direction = squareToUniformSphere(u1, u2);
+  // The environment: uniform directions, or the map's importance sampling.
+  const Emitter& env = scene_.emitters[item.index];
+  float pdfDirection = kUniformSpherePdf;
+  if (env.map) {
+    if (!env.map->sample(u1, u2, out.direction, pdfDirection)) return false;
+  } else {
+    out.direction = squareToUniformSphere(u1, u2);
+  }
   out.distance = std::numeric_limits<float>::infinity();
   out.position = sceneCenter_ + out.direction * (4 * sceneRadius_);
   out.emitter = int(item.index);
-  out.radiance = scene_.emitters[item.index].radiance;
-  out.pdf = prob * kUniformSpherePdf;
+  out.radiance = env.environmentRadiance(out.direction);
+  out.pdf = prob * pdfDirection;
   out.pdfLight = out.pdf;
   out.environment = true;
   return true;

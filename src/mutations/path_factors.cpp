@@ -46,6 +46,7 @@ Color emittedAlong(const MeasureContext& c, const PathVertex& light, Vec3 w) {
   const Emitter& e = c.scene.emitters[size_t(light.emitter)];
   if (e.kind == EmitterKind::Area && dot(light.ng, w) <= 0) return Color(0.0f);  // one-sided
   if (e.kind == EmitterKind::Point) return e.radiance * e.falloff(w);        // a spot's cone
+  if (e.kind == EmitterKind::Constant) return e.environmentRadiance(-w);     // w leaves the environment
   return e.radiance;
 }
 

@@ -28,6 +28,8 @@ class SceneBuilder {
   void film(const Document& doc, const pugi::xml_node& node);
   void shape(const Document& doc, const pugi::xml_node& node);
   int emitter(const Document& doc, const pugi::xml_node& node, int shape);
+  // An `envmap`'s image, read, decoded and turned into the sampling tables.
+  std::shared_ptr<const EnvironmentMap> environmentMap(const Document& doc, Properties& props, const SourceLocation& where);
   int bsdf(const Document& doc, const pugi::xml_node& node);
   int texture(const Document& doc, const pugi::xml_node& node);
 

@@ -189,6 +189,28 @@ bool SceneBuilder::appendSphere(Vec3 center, float radius, const Transform& toWo
   return true;
 }
 
+std::shared_ptr<const EnvironmentMap> SceneBuilder::environmentMap(const Document& doc, Properties& props,
+                                                                   const SourceLocation& where) {
+  const Property* file = props.find("filename");
+  if (!file) throw InputError(where, "envmap needs a 'filename'");
+  const std::string path = resolvePath(doc, file->value, file->where);
+  if (!std::filesystem::exists(path)) throw InputError(file->where, "environment map file '" + path + "' not found");
+  bool srgb = false;
+  RgbImage image = readImage(path, &srgb);
+  // Mitsuba 0.6's gamma override: 0 (default) as the file says, -1 sRGB, 1 linear, else a power.
+  const float gamma = props.getFloat("gamma", 0.0f);
+  for (Color& c : image.pixels) {
+    if (gamma == -1 || (gamma == 0 && srgb)) c = srgbToLinear(c);
+    else if (gamma > 0 && gamma != 1) c = Color(std::pow(c.x, gamma), std::pow(c.y, gamma), std::pow(c.z, gamma));
+  }
+  props.find("cache");  // Mitsuba 0.6's MIP-map cache file: nothing to cache here
+  try {
+    return std::make_shared<const EnvironmentMap>(image, props.getFloat("scale", 1.0f), props.getTransform("to_world"));
+  } catch (const std::invalid_argument& e) {
+    throw InputError(file->where, "'" + path + "': " + e.what());
+  }
+}
+
 int SceneBuilder::emitter(const Document& doc, const pugi::xml_node& node, int shape) {
   Properties props = readProperties(doc, node);
   std::string type = attribute(doc, node, "type");
@@ -229,6 +251,11 @@ int SceneBuilder::emitter(const Document& doc, const pugi::xml_node& node, int s
     e.kind = EmitterKind::Constant;
     e.radiance = props.getColor("radiance", Color(1.0f));
     if (scene_.environment()) throw InputError(where, "only one environment emitter is supported");
+  } else if (type == "envmap") {
+    if (scene_.environment()) throw InputError(where, "only one environment emitter is supported");
+    e.kind = EmitterKind::Constant;
+    e.map = environmentMap(doc, props, where);
+    e.radiance = e.map->mean();
   } else {
     scene_.warnings.add(where, "emitter '" + type + "' is not supported; ignored");
     return -1;

@@ -17,7 +17,7 @@ void stageGatherDirect(const StageContext& ctx, const RayQueue& shadowRays, cons
       Vec3 dir = bsdfRays.dirAt(i);
       float pdf = q.bsdfPdf[i];  // 0: a Dirac lobe, which next-event estimation cannot produce
       if (bsdfHits.geomID[i] == kNoHit) {
-        if (env) total += weight * env->radiance * emitterHitWeight(pdf, ctx.lights.pdfEnvironment());
+        if (env) total += weight * env->environmentRadiance(dir) * emitterHitWeight(pdf, ctx.lights.pdfEnvironment(dir));
       } else {
         SurfacePoint lp = surfaceAt(ctx.scene, bsdfHits.primID[i], bsdfHits.u[i], bsdfHits.v[i]);
         Color le = ctx.lights.emitted(lp, -dir);

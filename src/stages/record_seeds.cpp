@@ -62,7 +62,7 @@ void stageRecordSeeds(const StageContext& ctx, const PathQueue& paths, const Pat
       store.vertices.pdfForward[last] = 0;
       // What next-event estimation would have used for this light point.
       const VertexQueue& sv = store.vertices;
-      float pLight = environment ? ctx.lights.pdfEnvironment()
+      float pLight = environment ? ctx.lights.pdfEnvironment(-sv.ngAt(last))  // its normal faces the scene
                                  : ctx.lights.pdfArea(hits.primID[k], sv.pAt(last - 1), sv.pAt(last), sv.ngAt(last));
       appendSeed(store, paths, id, false, slots.emitWeight[k], slots.emitAt(k), slots.pLengthHere[k], pLight, begin);
     }

@@ -24,7 +24,7 @@ void stageShadeDirect(const StageContext& ctx, const RayQueue& cameraRays, const
     disableRay(bsdfRays, i);
     Vec3 dir = cameraRays.dirAt(i);
     if (hits.geomID[i] == kNoHit) {
-      if (env) radiance = env->radiance;
+      if (env) radiance = env->environmentRadiance(dir);
     } else {
       SurfacePoint sp = surfaceAt(ctx.scene, hits.primID[i], hits.u[i], hits.v[i]);
       radiance = ctx.lights.emitted(sp, -dir);

@@ -38,8 +38,9 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
 
     if (hits.geomID[k] == kNoHit) {
       if (!env) continue;
-      const float w = emitterHitWeight(prevPdf, ctx.lights.pdfEnvironment());
-      addRadiance(paths, id, throughput * env->radiance * w);
+      const Color le = env->environmentRadiance(dir);
+      const float w = emitterHitWeight(prevPdf, ctx.lights.pdfEnvironment(dir));
+      addRadiance(paths, id, throughput * le * w);
       if (recording) {
         VertexQueue::Row v;  // the whole row: pdfForward 0 and the parent link are written too
         v.p = environmentPoint(prev, dir);
@@ -49,7 +50,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
         v.parent = paths.lastVertex[id];
         history.vertices->setRow(vertex, v);
         slots.emitWeight[k] = w;
-        slots.emitSet(k, throughput * env->radiance);
+        slots.emitSet(k, throughput * le);
       }
       continue;
     }

@@ -34,6 +34,14 @@ const BadCase kCases[] = {
      "<scene version=\"3.0.0\">\n<shape type=\"cube\"><bsdf type=\"diffuse\">\n<texture type=\"bitmap\" "
      "name=\"reflectance\">\n<string name=\"filename\" value=\"missing.png\"/>\n</texture></bsdf></shape>\n</scene>\n",
      nullptr, "", 4, nullptr, "not found"},
+    {"MissingEnvironmentMap",
+     "<scene version=\"3.0.0\">\n  <shape type=\"cube\"/>\n  <emitter type=\"envmap\">\n"
+     "    <string name=\"filename\" value=\"sky.exr\"/>\n  </emitter>\n</scene>\n",
+     nullptr, "", 4, nullptr, "not found"},
+    {"CorruptEnvironmentMap",
+     "<scene version=\"3.0.0\">\n  <shape type=\"cube\"/>\n  <emitter type=\"envmap\">\n"
+     "    <string name=\"filename\" value=\"sky.hdr\"/>\n  </emitter>\n</scene>\n",
+     "sky.hdr=not an image", "", 0, "sky.hdr", "cannot read image"},
     {"BadNumber",
      "<scene version=\"3.0.0\">\n  <sensor type=\"perspective\">\n    <float name=\"fov\" value=\"4o\"/>\n  "
      "</sensor>\n  <shape type=\"cube\"/>\n</scene>\n",

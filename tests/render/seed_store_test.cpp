@@ -7,6 +7,7 @@
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
 #include "erpt/surface.h"
+#include "support/environment_scene.h"
 #include "support/test_support.h"
 
 namespace erpt {
@@ -54,6 +55,11 @@ class SeedStoreTest : public ::testing::TestWithParam<const char*> {
     if (which == "plastic") return loadScene(test::sourceDir() + "/tests/data/plastic-box.xml");
     // A sphere light (next-event estimation samples the cone it subtends) and glass spheres.
     if (which == "spheres") return loadScene(test::sourceDir() + "/tests/data/sphere-lights.xml");
+    // An environment map (radiance and pdf by direction) with a sun and a glass sphere.
+    if (which == "envmap") {
+      test::TempDir dir;
+      return loadScene(test::writeEnvmapGlassScene(dir));
+    }
     return loadScene(test::sourceDir() + "/scenes/default/scene.xml");
   }
 };
@@ -135,8 +141,15 @@ TEST_P(SeedStoreTest, DensitiesAndEstimatesRecomputeFromVertices) {
         estimate *= f / pd;
       }
     }
-    // The scenes have one emitter each: its radiance.
+    // The scenes have one emitter each: its radiance (an environment's: along the direction).
+    const size_t last = b + n - 1;
     Color le = sc.emitters[0].radiance;
+    if (v.kind[last] == kEnvironmentVertex) {
+      const Vec3 towardsEnvironment = -v.ngAt(last);
+      le = sc.emitters[0].environmentRadiance(towardsEnvironment);
+      // Either way the path found it, the density next-event estimation would have had there.
+      EXPECT_NEAR(s.pLight[k], lights.pdfEnvironment(towardsEnvironment), 1e-4f * s.pLight[k]) << "seed " << k;
+    }
     estimate = estimate * le / s.pLength[k];
     Color recorded = s.estimateAt(k);
     for (int ch = 0; ch < 3; ++ch)
@@ -147,7 +160,7 @@ TEST_P(SeedStoreTest, DensitiesAndEstimatesRecomputeFromVertices) {
   }
   EXPECT_GT(checkedExplicit, 100u);
   EXPECT_GT(checkedImplicit, 100u);
-  if (std::string(GetParam()) == "default" || std::string(GetParam()) == "spheres") {
+  if (std::string(GetParam()) != "cornell" && std::string(GetParam()) != "plastic") {
     EXPECT_GT(checkedSpecular, 100u);
   }
 }
@@ -163,7 +176,7 @@ TEST(SeedStore, SameSeedsForAnyThreadCount) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, SeedStoreTest, ::testing::Values("cornell", "default", "plastic", "spheres"));
+INSTANTIATE_TEST_SUITE_P(Scenes, SeedStoreTest, ::testing::Values("cornell", "default", "plastic", "spheres", "envmap"));
 
 }  // namespace
 }  // namespace erpt

@@ -92,7 +92,7 @@ RgbImage scalarPathTrace(const Scene& scene, int width, int height, int spp, int
           rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
           rtcIntersect1(rtc, &ctx, &rh);
           if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-            if (env) radiance += throughput * env->radiance;
+            if (env) radiance += throughput * env->environmentRadiance(dir);
             break;
           }
           SurfacePoint sp;

@@ -1,0 +1,56 @@
+// A latitude-longitude environment map (Mitsuba's `envmap`, both dialects): radiance by
+// direction, and importance sampling of directions.
+//
+// Directions map to the image as in Mitsuba 0.6 and 3: in the map's own frame (to_world maps it
+// to the world) a unit direction d has u = atan2(d.x, -d.z) / (2 pi) (wrapped to [0, 1)) and
+// v = acos(d.y) / pi, so +y is the top row, +z the middle column, +x the column at u = 1/4
+// and -z the left and right edges. Radiance is bilinear
+// between pixel centres (u repeats, v clamps), times `scale`.
+//
+// Sampling picks a pixel (marginal over rows, then conditional over the row's pixels) with
+// probability proportional to its solid angle times its weight, the largest luminance in its
+// 3x3 neighbourhood (which bounds the bilinear radiance inside the pixel, so radiance / pdf
+// stays bounded around a small bright sun), then a direction uniformly in the pixel's solid
+// angle. The solid-angle pdf is thus constant over each pixel; pdf() returns it for any
+// direction, and sample() returns pdf() of the direction it made.
+#pragma once
+
+#include <vector>
+
+#include "erpt/image_io.h"
+#include "erpt/math.h"
+
+namespace erpt {
+
+class EnvironmentMap {
+ public:
+  // `image` in linear radiance; throws std::invalid_argument when it has no pixels, a
+  // negative or non-finite value, or no light at all.
+  EnvironmentMap(const RgbImage& image, float scale, const Transform& toWorld);
+
+  Color eval(Vec3 direction) const;  // radiance arriving from world direction `direction`
+  // A unit world direction for (u1, u2) in [0, 1)^2 and its solid-angle pdf (false: pdf 0,
+  // only where rounding puts the direction across a pixel edge into a pixel of weight 0).
+  bool sample(float u1, float u2, Vec3& direction, float& pdf) const;
+  float pdf(Vec3 direction) const;
+  // Radiance averaged over the sphere of directions (the map's power / (4 pi) per unit area).
+  Color mean() const { return mean_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+  // The map's uv of a world direction, and back (exposed for tests).
+  void directionToUv(Vec3 direction, float& u, float& v) const;
+  Vec3 uvToDirection(float u, float v) const;
+
+ private:
+  int width_, height_;
+  std::vector<Color> pixels_;    // scaled radiance, row-major, row 0 = +y
+  std::vector<float> rowCos_;    // cos(theta) at the row boundaries: height + 1 entries
+  std::vector<float> rowCdf_;    // height + 1 entries
+  std::vector<float> columnCdf_;  // per row: width + 1 entries
+  std::vector<float> density_;   // per pixel: the solid-angle pdf of directions in it
+  Color mean_;
+  Vec3 toWorld_[3], toLocal_[3];  // rotation rows (to_world's 3x3, orthonormalised)
+};
+
+}  // namespace erpt

@@ -1,0 +1,156 @@
+#include "erpt/environment_map.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace erpt {
+
+namespace {
+
+// Index of the interval of `cdf` (n + 1 increasing entries from 0 to 1) that holds u, and u's
+// position within it in [0, 1).
+size_t pickInterval(const float* cdf, size_t n, float u, float& within) {
+  size_t i = size_t(std::upper_bound(cdf, cdf + n + 1, u) - cdf);
+  i = std::min(n - 1, i > 0 ? i - 1 : 0);
+  // Skip empty intervals the search may land on (u at a boundary of zero-probability cells).
+  while (i + 1 < n && !(cdf[i + 1] > cdf[i])) ++i;
+  const float width = cdf[i + 1] - cdf[i];
+  within = width > 0 ? std::clamp((u - cdf[i]) / width, 0.0f, 0x1.fffffep-1f) : 0.5f;
+  return i;
+}
+
+Vec3 rowTimes(const Vec3 rows[3], Vec3 v) { return {dot(rows[0], v), dot(rows[1], v), dot(rows[2], v)}; }
+
+}  // namespace
+
+EnvironmentMap::EnvironmentMap(const RgbImage& image, float scale, const Transform& toWorld)
+    : width_(image.width), height_(image.height) {
+  if (width_ <= 0 || height_ <= 0 || image.pixels.size() != size_t(width_) * size_t(height_))
+    throw std::invalid_argument("the environment image has no pixels");
+  if (!(scale >= 0) || !std::isfinite(scale)) throw std::invalid_argument("envmap scale must be finite and >= 0");
+  // The rotation part of to_world, orthonormalised (Mitsuba allows only rotations here).
+  Vec3 x = normalize(toWorld.vector({1, 0, 0})), y = toWorld.vector({0, 1, 0});
+  y = normalize(y - x * dot(x, y));
+  const Vec3 z = cross(x, y);
+  if (!isFinite(x) || !isFinite(y) || !isFinite(z)) throw std::invalid_argument("envmap to_world is not a rotation");
+  const float handed = dot(z, toWorld.vector({0, 0, 1})) < 0 ? -1.0f : 1.0f;
+  const Vec3 columns[3] = {x, y, z * handed};
+  for (int r = 0; r < 3; ++r) {
+    toWorld_[r] = Vec3(columns[0][r], columns[1][r], columns[2][r]);
+    toLocal_[r] = columns[r];
+  }
+
+  pixels_.resize(image.pixels.size());
+  for (size_t i = 0; i < pixels_.size(); ++i) {
+    const Color c = image.pixels[i];
+    if (!isFinite(c) || c.x < 0 || c.y < 0 || c.z < 0)
+      throw std::invalid_argument("the environment image has a negative or non-finite pixel (" + std::to_string(i % width_) +
+                                  ", " + std::to_string(i / width_) + ")");
+    pixels_[i] = c * scale;
+  }
+
+  // A pixel's sampling weight: the largest luminance in its 3x3 neighbourhood, which bounds
+  // the bilinear radiance anywhere inside it (so radiance / pdf stays bounded next to a small
+  // bright sun). Rows are weighted by their exact solid angle.
+  auto lum = [&](int c, int r) {
+    c = (c % width_ + width_) % width_;
+    r = std::clamp(r, 0, height_ - 1);
+    return double(luminance(pixels_[size_t(r) * width_ + c]));
+  };
+  std::vector<double> weight(pixels_.size());
+  for (int r = 0; r < height_; ++r)
+    for (int c = 0; c < width_; ++c) {
+      double w = 0;
+      for (int dr = -1; dr <= 1; ++dr)
+        for (int dc = -1; dc <= 1; ++dc) w = std::max(w, lum(c + dc, r + dr));
+      weight[size_t(r) * width_ + c] = w;
+    }
+  rowCos_.resize(size_t(height_) + 1);
+  for (int r = 0; r <= height_; ++r) rowCos_[size_t(r)] = float(std::cos(kPi * double(r) / height_));
+  rowCos_[0] = 1.0f;
+  rowCos_[size_t(height_)] = -1.0f;
+  rowCdf_.assign(size_t(height_) + 1, 0.0f);
+  columnCdf_.assign(size_t(height_) * (size_t(width_) + 1), 0.0f);
+  std::vector<double> rowWeight(size_t(height_), 0.0);
+  double total = 0, meanR = 0, meanG = 0, meanB = 0;
+  for (int r = 0; r < height_; ++r) {
+    const double pixelSolidAngle =
+        2 * kPi / width_ * (std::cos(kPi * double(r) / height_) - std::cos(kPi * double(r + 1) / height_));
+    float* cdf = &columnCdf_[size_t(r) * (width_ + 1)];
+    double rowSum = 0;
+    for (int c = 0; c < width_; ++c) {
+      rowSum += weight[size_t(r) * width_ + c];
+      const Color p = pixels_[size_t(r) * width_ + c];
+      meanR += p.x * pixelSolidAngle, meanG += p.y * pixelSolidAngle, meanB += p.z * pixelSolidAngle;
+    }
+    double running = 0;
+    for (int c = 0; c < width_; ++c) {
+      running += weight[size_t(r) * width_ + c];
+      cdf[c + 1] = rowSum > 0 ? float(running / rowSum) : float(c + 1) / float(width_);
+    }
+    cdf[width_] = 1.0f;
+    rowWeight[size_t(r)] = rowSum * pixelSolidAngle;
+    total += rowWeight[size_t(r)];
+  }
+  if (!(total > 0)) throw std::invalid_argument("the environment image is black: it emits no light");
+  mean_ = Color(float(meanR / (4 * kPi)), float(meanG / (4 * kPi)), float(meanB / (4 * kPi)));
+  double running = 0;
+  for (int r = 0; r < height_; ++r) {
+    running += rowWeight[size_t(r)];
+    rowCdf_[size_t(r) + 1] = float(running / total);
+  }
+  rowCdf_[size_t(height_)] = 1.0f;
+  // The pdf is constant over each pixel's solid angle: its weight / the weighted total.
+  density_.resize(pixels_.size());
+  for (size_t i = 0; i < density_.size(); ++i) density_[i] = float(weight[i] / total);
+}
+
+void EnvironmentMap::directionToUv(Vec3 direction, float& u, float& v) const {
+  const Vec3 d = normalize(rowTimes(toLocal_, direction));
+  u = std::atan2(d.x, -d.z) * (0.5f * kInvPi);
+  u -= std::floor(u);
+  if (u >= 1.0f) u = 0.0f;
+  v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) * kInvPi;
+}
+
+Vec3 EnvironmentMap::uvToDirection(float u, float v) const {
+  const float phi = 2 * kPi * u, theta = kPi * v;
+  const float sinTheta = std::sin(theta);
+  return rowTimes(toWorld_, Vec3(sinTheta * std::sin(phi), std::cos(theta), -sinTheta * std::cos(phi)));
+}
+
+Color EnvironmentMap::eval(Vec3 direction) const {
+  float u, v;
+  directionToUv(direction, u, v);
+  // Bilinear between pixel centres: columns wrap around, rows clamp at the poles.
+  const float x = u * float(width_) - 0.5f, y = v * float(height_) - 0.5f;
+  const float fx = std::floor(x), fy = std::floor(y);
+  const float tx = x - fx, ty = y - fy;
+  const int x0 = (int(fx) % width_ + width_) % width_, x1 = (x0 + 1) % width_;
+  const int y0 = std::clamp(int(fy), 0, height_ - 1), y1 = std::clamp(int(fy) + 1, 0, height_ - 1);
+  auto at = [&](int px, int py) { return pixels_[size_t(py) * width_ + px]; };
+  return (at(x0, y0) * (1 - tx) + at(x1, y0) * tx) * (1 - ty) + (at(x0, y1) * (1 - tx) + at(x1, y1) * tx) * ty;
+}
+
+bool EnvironmentMap::sample(float u1, float u2, Vec3& direction, float& pdfOut) const {
+  float withinRow, withinColumn;
+  const size_t r = pickInterval(rowCdf_.data(), size_t(height_), u2, withinRow);
+  const size_t c = pickInterval(&columnCdf_[r * (size_t(width_) + 1)], size_t(width_), u1, withinColumn);
+  // Uniform in solid angle within the pixel: phi uniform, cos(theta) uniform between its rows.
+  const float phi = 2 * kPi * (float(c) + withinColumn) / float(width_);
+  const float cosTheta = rowCos_[r] + (rowCos_[r + 1] - rowCos_[r]) * withinRow;
+  const float sinTheta = std::sqrt(std::max(0.0f, 1 - cosTheta * cosTheta));
+  direction = rowTimes(toWorld_, Vec3(sinTheta * std::sin(phi), cosTheta, -sinTheta * std::cos(phi)));
+  pdfOut = pdf(direction);  // from the direction, so sample() and pdf() agree to the bit
+  return pdfOut > 0;
+}
+
+float EnvironmentMap::pdf(Vec3 direction) const {
+  float u, v;
+  directionToUv(direction, u, v);
+  const int c = std::min(width_ - 1, int(u * float(width_))), r = std::min(height_ - 1, int(v * float(height_)));
+  return density_[size_t(r) * width_ + c];
+}
+
+}  // namespace erpt
