@@ -1,4 +1,4 @@
-// Mitsuba's perspective (pinhole) camera. Camera space: +z looks forward, +y is up and +x
+// Mitsuba's perspective (pinhole) camera, and its thinlens variant (a lens disk). Camera space: +z looks forward, +y is up and +x
 // points to the image's left (Mitsuba's convention); film coordinates are in pixels with
 // (0, 0) at the top-left corner of the image.
 #pragma once
@@ -22,6 +22,12 @@ class Camera {
   // World point to film coordinates; false when behind the camera.
   bool project(Vec3 p, float& filmX, float& filmY) const;
   Vec3 position() const { return origin_; }
+  // Thin lens (apertureRadius > 0): moves a pinhole ray's origin to the lens point given by
+  // (u1, u2) (uniform on the disk) and aims it at the point the pinhole ray reaches on the
+  // plane of focus, so everything on that plane stays sharp. Clip distances follow the new
+  // direction.
+  bool hasLens() const { return apertureRadius_ > 0; }
+  void throughLens(float u1, float u2, Vec3& origin, Vec3& direction, float& tnear, float& tfar) const;
   // Cosine between a world direction leaving the camera and the optical axis.
   float cosToAxis(Vec3 direction) const;
   float tanHalfFovX() const { return tanHalfX_; }
@@ -32,6 +38,8 @@ class Camera {
   Transform toWorld_, toCamera_;
   Vec3 origin_;
   float tanHalfX_, aspect_, nearClip_, farClip_;
+  float apertureRadius_, focusDistance_;
+  Vec3 right_, up_, forward_;  // the camera frame in the world (unit vectors)
   float rotation_[9];  // toWorld_'s 3x3 part in single precision, row-major, for the SIMD path
   int width_, height_;
 };

@@ -103,6 +103,8 @@ struct CameraSettings {
   float fovDegrees = 39.3077f;  // measured along fovAxis; converted once the film size is known
   FovAxis fovAxis = FovAxis::X;
   float nearClip = 1e-2f, farClip = 1e4f;
+  // `thinlens`: a lens disk of this radius (0: a pinhole) focused at focusDistance.
+  float apertureRadius = 0, focusDistance = 0;
 };
 
 struct FilmSettings {

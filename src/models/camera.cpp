@@ -1,4 +1,5 @@
 #include "erpt/camera.h"
+#include "erpt/warp.h"
 
 namespace erpt {
 
@@ -28,6 +29,11 @@ Camera::Camera(const CameraSettings& s, int width, int height)
       aspect_(float(width) / float(height)),
       nearClip_(s.nearClip),
       farClip_(s.farClip),
+      apertureRadius_(s.apertureRadius),
+      focusDistance_(s.focusDistance),
+      right_(normalize(s.toWorld.vector({1, 0, 0}))),
+      up_(normalize(s.toWorld.vector({0, 1, 0}))),
+      forward_(normalize(s.toWorld.vector({0, 0, 1}))),
       width_(width),
       height_(height) {
   for (int r = 0; r < 3; ++r)
@@ -44,6 +50,17 @@ Camera::Ray Camera::generateRay(float filmX, float filmY) const {
   r.tnear = nearClip_ / local.z;
   r.tfar = farClip_ / local.z;
   return r;
+}
+
+void Camera::throughLens(float u1, float u2, Vec3& origin, Vec3& direction, float& tnear, float& tfar) const {
+  float x, y;
+  squareToDisk(u1, u2, x, y);
+  const Vec3 focus = origin_ + direction * (focusDistance_ / dot(direction, forward_));
+  origin = origin_ + right_ * (x * apertureRadius_) + up_ * (y * apertureRadius_);
+  direction = normalize(focus - origin);
+  const float cosAxis = dot(direction, forward_);
+  tnear = nearClip_ / cosAxis;
+  tfar = farClip_ / cosAxis;
 }
 
 bool Camera::project(Vec3 p, float& filmX, float& filmY) const {

@@ -1,4 +1,7 @@
 // <sensor>, its <film>, <rfilter> and <sampler>.
+#include <cmath>
+#include <cstdlib>
+
 #include "scene_builder.h"
 
 namespace erpt::xml {
@@ -12,20 +15,37 @@ void SceneBuilder::sensor(const Document& doc, const pugi::xml_node& node) {
   std::vector<pugi::xml_node> children;
   Properties props = readProperties(doc, node, &children);
   std::string type = attribute(doc, node, "type");
-  if (type != "perspective") {
-    if (type != "thinlens") throw InputError(doc.where(node), "unsupported sensor type '" + type + "'");
-    scene_.warnings.add(doc.where(node), "thinlens sensor is rendered as a pinhole (perspective) camera");
-    props.find("aperture_radius");
-    props.find("focus_distance");
-  }
+  if (type != "perspective" && type != "thinlens")
+    throw InputError(doc.where(node), "unsupported sensor type '" + type + "'");
   CameraSettings& cam = scene_.camera;
+  if (type == "thinlens") {
+    cam.apertureRadius = props.getFloat("aperture_radius", 0.03f);  // Mitsuba's defaults
+    cam.focusDistance = props.getFloat("focus_distance", 0.0f);
+    if (!props.find("focus_distance")) throw InputError(doc.where(node), "thinlens needs a 'focus_distance'");
+    if (!(cam.apertureRadius >= 0 && cam.apertureRadius < 1e6f))
+      throw InputError(props.find("aperture_radius")->where, "aperture_radius must be >= 0");
+    if (!(cam.focusDistance > 0 && cam.focusDistance < 1e30f))
+      throw InputError(props.find("focus_distance")->where, "focus_distance must be > 0");
+  }
   cam.toWorld = props.getTransform("to_world");
   if (std::abs(cam.toWorld.determinant3x3()) < 1e-12)
     throw InputError(props.find("to_world")->where, "the sensor's to_world transform is singular");
+  std::string axis = props.getString("fov_axis", "x");
+  if (!props.find("fov") && props.find("focal_length")) {
+    // Mitsuba's 35 mm film equivalent: the diagonal field of view of a 36 x 24 mm frame.
+    const Property* f = props.find("focal_length");
+    std::string text = f->value;
+    if (text.size() > 2 && text.compare(text.size() - 2, 2, "mm") == 0) text.resize(text.size() - 2);
+    char* end = nullptr;
+    const double mm = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !(mm > 0) || !std::isfinite(mm))
+      throw InputError(f->where, "focal_length must look like '50mm' (a positive length in mm), not '" + f->value + "'");
+    cam.fovDegrees = float(2 * std::atan(std::sqrt(36.0 * 36.0 + 24.0 * 24.0) / (2 * mm)) * 180 / kPi);
+    axis = "diagonal";
+  }
   cam.fovDegrees = props.getFloat("fov", cam.fovDegrees);
   if (!(cam.fovDegrees > 0 && cam.fovDegrees < 180))
     throw InputError(props.find("fov")->where, "fov must be between 0 and 180 degrees");
-  std::string axis = props.getString("fov_axis", "x");
   if (axis == "x") cam.fovAxis = FovAxis::X;
   else if (axis == "y") cam.fovAxis = FovAxis::Y;
   else if (axis == "diagonal") cam.fovAxis = FovAxis::Diagonal;

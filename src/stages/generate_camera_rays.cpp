@@ -36,6 +36,15 @@ void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixels, co
   std::fill(rays.orgX.begin() + b, rays.orgX.begin() + range.end, eye.x);
   std::fill(rays.orgY.begin() + b, rays.orgY.begin() + range.end, eye.y);
   std::fill(rays.orgZ.begin() + b, rays.orgZ.begin() + range.end, eye.z);
+  if (!ctx.camera.hasLens()) return;
+  for (size_t i = range.begin; i < range.end; ++i) {
+    const uint64_t key = sampleKey(ctx.seed, pixels[i], samples[i]);
+    Vec3 origin, direction = rays.dirAt(i);
+    ctx.camera.throughLens(uniformFloat(key, kDimLensX), uniformFloat(key, kDimLensY), origin, direction, rays.tnear[i],
+                           rays.tfar[i]);
+    rays.orgX[i] = origin.x, rays.orgY[i] = origin.y, rays.orgZ[i] = origin.z;
+    rays.dirX[i] = direction.x, rays.dirY[i] = direction.y, rays.dirZ[i] = direction.z;
+  }
 }
 
 }  // namespace erpt
