@@ -28,6 +28,11 @@ struct Material {
   float alpha = 0.1f;
   float exponent = 30;  // phong: the specular lobe's exponent
   bool nonlinear = false;  // plastic: Mitsuba's `nonlinear` internal scattering model
+  // Wrapped in `mask`: a cut-out. Rays pass through where the opacity (its channels' mean) is
+  // below 0.5, in every integrator (an Embree intersection filter); Mitsuba blends partial
+  // opacities stochastically, which the loader warns about.
+  bool masked = false;
+  ColorParam opacity{Color(1.0f)};
   // Derived when the scene is finalized:
   float fdrInternal = 0;             // plastic: diffuse Fresnel reflectance seen from inside
   float specularSamplingWeight = 0;  // plastic: share of samples given to the coat; phong: to the specular lobe

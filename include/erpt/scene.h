@@ -132,6 +132,12 @@ struct Scene {
   Warnings warnings;
   size_t droppedDegenerateTriangles = 0;
 
+  // Whether a ray may stop on triangle `triangle` at barycentrics (b1, b2): false only in the
+  // cut-out part of a `mask` material (opacity below 0.5). Emitters are never cut (light
+  // sampling picks points by area).
+  bool opaqueAt(uint32_t triangle, float b1, float b2) const;
+  bool hasMasks() const;
+
   // Resolves the (possibly textured) colours of a material at texture coordinates (u, v).
   SurfaceColors surfaceColors(int material, float u, float v) const;
   const Emitter* environment() const;

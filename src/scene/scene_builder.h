@@ -28,6 +28,8 @@ class SceneBuilder {
   void film(const Document& doc, const pugi::xml_node& node);
   void shape(const Document& doc, const pugi::xml_node& node);
   int emitter(const Document& doc, const pugi::xml_node& node, int shape);
+  // A one-line warning when a mask's opacity is partial (neither ~0 nor ~1) anywhere it matters.
+  void warnPartialOpacity(const ColorParam& opacity, const SourceLocation& where);
   // An `envmap`'s image, read, decoded and turned into the sampling tables.
   std::shared_ptr<const EnvironmentMap> environmentMap(const Document& doc, Properties& props, const SourceLocation& where);
   int bsdf(const Document& doc, const pugi::xml_node& node);

@@ -71,6 +71,14 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     m = scene_.materials[inner];
     m.name = id.empty() ? "twosided(" + m.name + ")" : id;
     m.twoSided = true;
+  } else if (type == "mask") {
+    int inner = nested();
+    if (inner < 0) throw InputError(doc.where(node), "mask needs a nested <bsdf>");
+    m = scene_.materials[inner];
+    m.name = id.empty() ? "mask(" + m.name + ")" : id;
+    m.masked = true;
+    m.opacity = props.getColorParam("opacity", Color(0.5f), scene_);  // Mitsuba's default
+    warnPartialOpacity(m.opacity, props.where());
   } else if (type == "conductor" || type == "roughconductor") {
     m.kind = type == "conductor" ? BsdfKind::Conductor : BsdfKind::RoughConductor;
     // Mitsuba 0.6 defaults to copper, Mitsuba 3 to a perfect mirror.
@@ -140,6 +148,25 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
   scene_.materials.push_back(m);
   if (!id.empty()) materialIds_[id] = index;
   return index;
+}
+
+void SceneBuilder::warnPartialOpacity(const ColorParam& opacity, const SourceLocation& where) {
+  auto partial = [](Color c) {
+    const float a = (c.x + c.y + c.z) / 3;
+    return a > 0.02f && a < 0.98f;
+  };
+  size_t partialTexels = 0, texels = 1;
+  if (opacity.texture >= 0) {
+    const Texture& t = scene_.textures[size_t(opacity.texture)];
+    texels = std::max<size_t>(1, t.texels.size());
+    for (const Color& c : t.texels) partialTexels += partial(c);
+    if (t.kind == TextureKind::Checkerboard) partialTexels = partial(t.color0) || partial(t.color1) ? texels : 0;
+  } else {
+    partialTexels = partial(opacity.value);
+  }
+  if (partialTexels * 100 > texels)
+    scene_.warnings.add(where, "mask opacity between 0 and 1 is rendered as a cut-out at 0.5 (Mitsuba blends partial "
+                               "opacity stochastically)");
 }
 
 int SceneBuilder::texture(const Document& doc, const pugi::xml_node& node) {

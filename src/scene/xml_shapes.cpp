@@ -72,6 +72,11 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node) {
     else scene_.warnings.add(doc.where(child), "<" + tag + "> inside <shape> is not supported; ignored");
   }
   if (material < 0) material = defaultMaterial();
+  if (exactSphere && scene_.materials[size_t(material)].masked) {
+    // Cut-outs are an intersection filter on the triangles, whose uvs the mask reads.
+    scene_.warnings.add(where, "a masked sphere is tessellated (cut-outs apply to triangles)");
+    exactSphere = false;
+  }
 
   int shapeIndex = int(scene_.shapes.size());
   ShapeInfo info;
@@ -284,6 +289,25 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
   if (scene.primitiveCount() == 0 && scene.emitters.empty())
     throw InputError({path, 0}, "the scene has no geometry and no emitters");
   return scene;
+}
+
+bool Scene::opaqueAt(uint32_t triangle, float b1, float b2) const {
+  const Material& m = materials[size_t(mesh.material[triangle])];
+  if (!m.masked || mesh.emitter[triangle] >= 0) return true;
+  Color opacity = m.opacity.value;
+  if (m.opacity.texture >= 0) {
+    const uint32_t a = mesh.v0[triangle], b = mesh.v1[triangle], c = mesh.v2[triangle];
+    const float b0 = 1 - b1 - b2;
+    opacity = textures[size_t(m.opacity.texture)].eval(b0 * mesh.u[a] + b1 * mesh.u[b] + b2 * mesh.u[c],
+                                                       b0 * mesh.v[a] + b1 * mesh.v[b] + b2 * mesh.v[c]);
+  }
+  return (opacity.x + opacity.y + opacity.z) >= 1.5f;  // mean >= 0.5
+}
+
+bool Scene::hasMasks() const {
+  for (const Material& m : materials)
+    if (m.masked) return true;
+  return false;
 }
 
 SurfaceColors Scene::surfaceColors(int material, float u, float v) const {

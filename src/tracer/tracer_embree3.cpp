@@ -52,6 +52,17 @@ void attachSpheres(RTCDevice device, RTCScene scene, const SphereSet& spheres) {
   rtcAttachGeometry(scene, geom);
   rtcReleaseGeometry(geom);
 }
+// Embree intersection filter (N rays at once): rejects candidate hits on the cut-out part of
+// a `mask` material, so traversal goes on behind them.
+void rejectCutOutHits(const RTCFilterFunctionNArguments* args) {
+  const Scene& scene = *static_cast<const Scene*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const unsigned triangle = RTCHitN_primID(args->hit, args->N, i);
+    if (!scene.opaqueAt(triangle, RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i))) args->valid[i] = 0;
+  }
+}
+
 }  // namespace
 
 Tracer::Tracer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
@@ -78,6 +89,12 @@ Tracer::Tracer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
       indices[3 * t] = mesh.v0[t];
       indices[3 * t + 1] = mesh.v1[t];
       indices[3 * t + 2] = mesh.v2[t];
+    }
+    if (scene.hasMasks()) {
+      // `mask` cut-outs: hits where the opacity is below 0.5 are rejected for every ray.
+      rtcSetGeometryUserData(geom, const_cast<Scene*>(&scene));
+      rtcSetGeometryIntersectFilterFunction(geom, rejectCutOutHits);
+      rtcSetGeometryOccludedFilterFunction(geom, rejectCutOutHits);
     }
     rtcCommitGeometry(geom);
     rtcAttachGeometry(impl_->scene, geom);

@@ -8,6 +8,7 @@
 #include "erpt/scene_loader.h"
 #include "support/block_bias.h"
 #include "support/environment_scene.h"
+#include "support/mask_scene.h"
 #include "support/test_support.h"
 
 namespace erpt {
@@ -121,6 +122,15 @@ TEST(StatisticalErpt, EnvironmentMapSunCausticMatchesPathTracerBlockByBlock) {
   const Scene scene = loadScene(test::writeEnvmapGlassScene(dir));
   ASSERT_TRUE(scene.environment() && scene.environment()->map);
   expectErptMatchesPathTracerBlockByBlock(scene, 16, everyPathByErpt(200), 13000);
+}
+
+// A `mask` cut-out (an Embree intersection filter): chains move through the holes and along
+// the patterned shadow; every traced and connecting segment must see the same cut-outs.
+TEST(StatisticalErpt, MaskCutOutMatchesPathTracerBlockByBlock) {
+  test::TempDir dir;
+  const Scene scene = loadScene(test::writeCheckerMaskScene(dir, false));
+  ASSERT_TRUE(scene.hasMasks());
+  expectErptMatchesPathTracerBlockByBlock(scene, 16, everyPathByErpt(200), 14000);
 }
 
 }  // namespace
