@@ -26,7 +26,11 @@ class SceneBuilder {
   void integrator(const Document& doc, const pugi::xml_node& node);
   void sensor(const Document& doc, const pugi::xml_node& node);
   void film(const Document& doc, const pugi::xml_node& node);
-  void shape(const Document& doc, const pugi::xml_node& node);
+  // `parent`: the to_world of the `instance` this shape is a copy for (shapegroup members).
+  void shape(const Document& doc, const pugi::xml_node& node, const Transform* parent = nullptr, int depth = 0);
+  // `shapegroup` (kept by id) and `instance` (copies of the group's shapes, placed by its
+  // to_world; not Embree instances yet).
+  void instance(const Document& doc, const pugi::xml_node& node, Properties& props, const Transform* parent, int depth);
   int emitter(const Document& doc, const pugi::xml_node& node, int shape);
   // A one-line warning when a mask's opacity is partial (neither ~0 nor ~1) anywhere it matters.
   void warnPartialOpacity(const ColorParam& opacity, const SourceLocation& where);
@@ -58,6 +62,7 @@ class SceneBuilder {
   int majorVersion_ = 0;  // 0: Mitsuba 0.5/0.6 dialect, >= 2: Mitsuba 2/3 dialect
   std::list<Document> documents_;  // kept alive: nodes point into them
   std::map<std::string, int> materialIds_, textureIds_;
+  std::map<std::string, pugi::xml_node> shapeGroups_;
   int defaultMaterial_ = -1;
   bool sawSensor_ = false;
 };

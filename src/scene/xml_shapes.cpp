@@ -7,11 +7,33 @@
 
 namespace erpt::xml {
 
-void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node) {
+void SceneBuilder::instance(const Document& doc, const pugi::xml_node& node, Properties& props, const Transform* parent,
+                            int depth) {
+  const SourceLocation where = doc.where(node);
+  if (attribute(doc, node, "type") == "shapegroup") {
+    const std::string id = attribute(doc, node, "id", false);
+    if (id.empty()) throw InputError(where, "a shapegroup needs an id (instances refer to it)");
+    shapeGroups_[id] = node;
+    props.warnUnused(scene_.warnings);
+    return;
+  }
+  pugi::xml_node ref = node.child("ref");
+  if (!ref) throw InputError(where, "an instance needs a <ref id=\"...\"/> to a shapegroup");
+  const std::string id = attribute(doc, ref, "id");
+  const auto group = shapeGroups_.find(id);
+  if (group == shapeGroups_.end()) throw InputError(doc.where(ref), "no shapegroup with id '" + id + "' before this instance");
+  if (depth >= 8) throw InputError(where, "instances nested more than 8 deep (a shapegroup instancing itself?)");
+  const Transform toWorld = parent ? *parent * props.getTransform("to_world") : props.getTransform("to_world");
+  props.warnUnused(scene_.warnings);
+  for (const pugi::xml_node& member : group->second.children("shape")) shape(doc, member, &toWorld, depth + 1);
+}
+
+void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const Transform* parent, int depth) {
   std::vector<pugi::xml_node> children;
   Properties props = readProperties(doc, node, &children);
   std::string type = attribute(doc, node, "type");
   SourceLocation where = doc.where(node);
+  if (type == "shapegroup" || type == "instance") return instance(doc, node, props, parent, depth);
 
   // The mesh, in object space (empty for an exact sphere).
   MeshData mesh;
@@ -85,7 +107,7 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node) {
   info.where = where;
   info.firstTriangle = uint32_t(scene_.mesh.triangleCount());
   scene_.shapes.push_back(info);
-  const Transform toWorld = props.getTransform("to_world");
+  const Transform toWorld = parent ? *parent * props.getTransform("to_world") : props.getTransform("to_world");
   const bool flip = props.getBool("flip_normals", false);
   if (exactSphere && !appendSphere(sphereCenter, sphereRadius, toWorld, flip, material, shapeIndex)) {
     scene_.warnings.add(where, "to_world scales the sphere unevenly; it is tessellated (an ellipsoid)");
