@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 
+#include "erpt/mesh_io.h"
 #include "erpt/scene_loader.h"
 #include "xml_document.h"
 #include "xml_properties.h"
@@ -49,7 +50,7 @@ class SceneBuilder {
   // with a warning at `where` naming both.
   std::string resolvePath(const Document& doc, const std::string& relative, const SourceLocation& where) const;
   int materialById(const Document& doc, const pugi::xml_node& node, const std::string& id);
-  void appendMesh(struct MeshData& mesh, const Transform& toWorld, const Properties& props, int material,
+  void appendMesh(MeshData& mesh, const Transform& toWorld, const Properties& props, int material,
                   int shapeIndex, const SourceLocation& meshWhere);
   // An exact sphere, when to_world keeps it one (rotation, uniform scale, translation);
   // false otherwise (the caller tessellates it).
@@ -63,6 +64,7 @@ class SceneBuilder {
   std::list<Document> documents_;  // kept alive: nodes point into them
   std::map<std::string, int> materialIds_, textureIds_;
   std::map<std::string, pugi::xml_node> shapeGroups_;
+  std::map<std::string, MeshData> instanceMeshes_;  // mesh files of shapegroup members, by file and options
   int defaultMaterial_ = -1;
   bool sawSensor_ = false;
 };

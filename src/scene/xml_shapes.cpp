@@ -49,15 +49,25 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const 
     meshWhere = {path, 0};
     return path;
   };
+  // Members of a shapegroup are loaded once per instance: their files are read once.
+  auto readOnce = [&](const std::string& key, auto read) -> MeshData {
+    if (!parent) return read();
+    const auto cached = instanceMeshes_.find(key);
+    if (cached != instanceMeshes_.end()) return cached->second;
+    return instanceMeshes_[key] = read();
+  };
   if (type == "obj") {
     std::string path = meshFile();
-    mesh = readObj(path, props.getBool("flip_tex_coords", true), scene_.warnings);
+    const bool flipUv = props.getBool("flip_tex_coords", true);
+    mesh = readOnce("obj|" + path + "|" + std::to_string(flipUv), [&] { return readObj(path, flipUv, scene_.warnings); });
   } else if (type == "ply") {
     std::string path = meshFile();
-    mesh = readPly(path, scene_.warnings);
+    mesh = readOnce("ply|" + path, [&] { return readPly(path, scene_.warnings); });
   } else if (type == "serialized") {
     std::string path = meshFile();
-    mesh = readSerialized(path, props.getInt("shape_index", 0), scene_.warnings);
+    const int index = props.getInt("shape_index", 0);
+    mesh = readOnce("serialized|" + path + "|" + std::to_string(index),
+                    [&] { return readSerialized(path, index, scene_.warnings); });
   } else if (type == "rectangle") {
     mesh = makeRectangle();
   } else if (type == "cube") {
@@ -117,6 +127,8 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const 
   if (!exactSphere) appendMesh(mesh, toWorld, props, material, shapeIndex, meshWhere);
   scene_.shapes.back().triangleCount = uint32_t(scene_.mesh.triangleCount()) - info.firstTriangle;
 
+  if (!emitters.empty() && scene_.materials[size_t(material)].masked)
+    scene_.warnings.add(where, "an emitting shape is not cut by its mask (light sampling picks points by area)");
   for (const pugi::xml_node& e : emitters) {
     int index = emitter(doc, e, shapeIndex);
     if (index < 0) continue;

@@ -59,6 +59,13 @@ TEST(Mask, PartialOpacityIsRenderedAsACutOutWithAWarning) {
   EXPECT_GT(sphere.mesh.triangleCount(), 1000u);
   ASSERT_EQ(sphere.warnings.messages.size(), 1u);
   EXPECT_NE(sphere.warnings.messages[0].find("tessellated"), std::string::npos);
+  // An emitter's shape is never cut, and the loader says so.
+  const Scene light = loadScene(dir.write("v.xml", R"(<scene version="3.0.0"><shape type="rectangle">
+    <bsdf type="mask"><float name="opacity" value="0"/><bsdf type="diffuse"/></bsdf>
+    <emitter type="area"/></shape></scene>)"));
+  EXPECT_TRUE(light.opaqueAt(0, 0.2f, 0.2f));
+  ASSERT_EQ(light.warnings.messages.size(), 1u);
+  EXPECT_NE(light.warnings.messages[0].find("not cut"), std::string::npos) << light.warnings.messages[0];
   EXPECT_THROW(loadScene(dir.write("t.xml", R"(<scene version="3.0.0"><shape type="cube">
     <bsdf type="mask"><float name="opacity" value="1"/></bsdf></shape></scene>)")), InputError);
 }

@@ -22,7 +22,10 @@ const char* kHeader = R"(<scene version="3.0.0">
 
 TEST(Instance, CopiesGiveTheWrittenOutPicture) {
   test::TempDir dir;
-  const std::string group = R"(<shape type="cube"><transform name="to_world"><scale value="0.4"/><translate y="0.4"/></transform>
+  dir.write("tri.obj", "v 0 0 0\nv 0.6 0 0\nv 0 0.9 0.2\nf 1 2 3\n");
+  const std::string group = R"(<shape type="obj"><string name="filename" value="tri.obj"/>
+        <transform name="to_world"><translate z="0.6"/></transform></shape>
+      <shape type="cube"><transform name="to_world"><scale value="0.4"/><translate y="0.4"/></transform>
         <bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.2, 0.2"/></bsdf></shape>
       <shape type="sphere"><point name="center" value="0.9, 0.3, 0"/><float name="radius" value="0.3"/>
         <bsdf type="dielectric"/></shape>)";
@@ -33,6 +36,10 @@ TEST(Instance, CopiesGiveTheWrittenOutPicture) {
   </scene>)"));
   // The same shapes, each with the instance's transform after its own (document order).
   const Scene written = loadScene(dir.write("b.xml", std::string(kHeader) + R"(
+    <shape type="obj"><string name="filename" value="tri.obj"/>
+      <transform name="to_world"><translate z="0.6"/><translate x="-1.2"/></transform></shape>
+    <shape type="obj"><string name="filename" value="tri.obj"/>
+      <transform name="to_world"><translate z="0.6"/><rotate y="1" angle="40"/><translate x="1.2" z="-0.5"/></transform></shape>
     <shape type="cube"><transform name="to_world"><scale value="0.4"/><translate y="0.4"/><translate x="-1.2"/></transform>
       <bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.2, 0.2"/></bsdf></shape>
     <shape type="sphere"><point name="center" value="0.9, 0.3, 0"/><float name="radius" value="0.3"/>
