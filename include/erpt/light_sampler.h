@@ -70,6 +70,7 @@ class LightSampler {
   std::vector<float> primitiveProbability_;  // per primitive id (0 if not emissive)
   std::vector<float> emitterProbability_;   // per point / environment emitter
   float environmentProbability_ = 0;
+  const Emitter* environment_ = nullptr;  // the environment emitter, when it can be picked
   float sceneRadius_ = 1;
   Vec3 sceneCenter_;
 };

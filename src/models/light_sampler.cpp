@@ -61,7 +61,10 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     const Kind kind = items_[i].kind;
     if (kind == Kind::Triangle || kind == Kind::Sphere) primitiveProbability_[items_[i].index] = p;
     else emitterProbability_[items_[i].index] = p;
-    if (kind == Kind::Environment) environmentProbability_ = p;
+    if (kind == Kind::Environment) {
+      environmentProbability_ = p;
+      environment_ = &scene.emitters[items_[i].index];
+    }
   }
   if (!cdf_.empty()) cdf_.back() = 1.0f;
 }
@@ -115,8 +118,7 @@ float LightSampler::pickProbabilityOfEmitter(int emitter) const { return emitter
 
 float LightSampler::pdfEnvironment(Vec3 direction) const {
   if (environmentProbability_ == 0) return 0.0f;
-  const Emitter* env = scene_.environment();
-  return environmentProbability_ * (env->map ? env->map->pdf(direction) : kUniformSpherePdf);
+  return environmentProbability_ * (environment_->map ? environment_->map->pdf(direction) : kUniformSpherePdf);
 }
 
 bool LightSampler::finishAreaSample(uint32_t primitive, float pdfArea, Vec3 ref, Vec3 p, Vec3 n,
