@@ -52,6 +52,11 @@ struct ErptQueues {
   RayQueue rays, shadowRays;
   HitQueue hits;
   DepositQueue deposits;
+  // Dense batches (chain_step.cpp): the rays of the proposals still walking after the first
+  // bounce, or of the connections, with the slot each row belongs to.
+  RayQueue denseRays;
+  HitQueue denseHits;
+  std::vector<uint32_t> denseSlots;
   explicit ErptQueues(size_t capacity);
 };
 
@@ -65,11 +70,15 @@ int loadChainPath(const ChainQueue& chains, const VertexQueue& vertices, size_t 
 void loadChainFromSeed(ChainQueue& chains, VertexQueue& chainVertices, size_t slot, const SeedStore& store,
                        size_t seed, uint64_t key, uint32_t chainLength, float energyPerStep);
 
-// Marks slot i's proposal rejected for `why` and disables its ray (mutate and trace stages).
-inline void rejectProposal(ProposalQueue& p, RayQueue& rays, size_t i, RejectReason why) {
+// Marks slot i's proposal rejected for `why` and disables its ray, row `ray` of `rays`
+// (mutate and trace stages; the trace stage's later bounces run in dense batches).
+inline void rejectProposal(ProposalQueue& p, RayQueue& rays, size_t i, RejectReason why, size_t ray) {
   p.state[i] = kProposalRejected;
   p.reason[i] = why;
-  disableRay(rays, i);
+  disableRay(rays, ray);
+}
+inline void rejectProposal(ProposalQueue& p, RayQueue& rays, size_t i, RejectReason why) {
+  rejectProposal(p, rays, i, why, i);
 }
 
 // Chooses each chain's mutation and perturbation size for a step (the mutate stage's first
@@ -105,14 +114,18 @@ void stageErptMutate(const ErptStepContext& ctx, const ChainQueue& chains, const
 // Trace stage, after intersect: checks each walking proposal's hit against the vertex kind the
 // current path has there, stores the new vertex, and either sets the next ray (through a
 // specular chain, or along a perturbed direction) or, at the proposal's last regenerated
-// vertex, the connection ray in `shadowRays`. Returns how many proposals are still walking.
+// vertex, the connection ray in `shadowRays` (row = slot). Returns how many proposals are
+// still walking. `slotOf` (null: row k is slot k) maps rows of `rays` and `hits` to chain
+// slots, for the dense batches of the walk's later bounces (chain_step.cpp compacts them).
 size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                       ProposalQueue& proposals, VertexQueue& proposalVertices, RayQueue& rays, const HitQueue& hits,
-                      RayQueue& shadowRays, IndexRange range);
+                      RayQueue& shadowRays, IndexRange range, const uint32_t* slotOf = nullptr);
 
 // Connect stage: the occlusion stream for the connection rays of `range`, then rejects the
-// proposals whose connection is blocked.
-void stageErptConnect(const Tracer& tracer, RayQueue& shadowRays, ProposalQueue& proposals, IndexRange range);
+// proposals whose connection is blocked. `slotOf` as for the trace stage: row k of
+// `shadowRays` is slot slotOf[k]'s connection.
+void stageErptConnect(const Tracer& tracer, RayQueue& shadowRays, ProposalQueue& proposals, IndexRange range,
+                      const uint32_t* slotOf = nullptr);
 
 // Accept stage: q = min(1, f(z) a(z) T(z -> y) / (f(y) a(y) T(y -> z))) on luminance in the
 // mutation's measure (a(z) / a(y): proposals.selection), the coin, the step's deposit record(s) (erpt_deposit.cpp's rule), and the chain
@@ -155,8 +168,10 @@ struct DepositFilters {
 
 // Adds the deposit records of the slots in `range` to the film in slot order, splatting each
 // over the pixels the filter reaches, after the noise filters (which update the chains' run
-// state). Sequential on purpose (the film sums stay in a fixed order). Returns the total
-// energy added (luminance).
+// state). Sequential on purpose (the film sums stay in a fixed order; splitting the film into
+// strips of columns that threads fill in slot order was measured slower on 2 cores: a step's
+// deposits take ~15 ns each, about what binning them costs). Returns the total energy added
+// (luminance).
 double applyDeposits(ChainQueue& chains, const ProposalQueue& proposals, const DepositQueue& deposits, IndexRange range,
                      const FilmDensity& density, Film& film, DepositFilters& filters);
 

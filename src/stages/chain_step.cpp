@@ -14,6 +14,38 @@ size_t raysInFlight(const RayQueue& rays, IndexRange r) {
   return n;
 }
 
+// Dense batches. After the first bounce only the proposals walking a specular chain (or
+// through a perturbed direction) still have a ray, and only those that reached their last
+// regenerated vertex have a connection: instead of handing Embree and the trace stage the
+// whole queue with most rows disabled, their rays are gathered into consecutive rows of
+// `denseRays`, and `denseSlots` says which chain slot each row belongs to. Gathering keeps slot
+// order, so every proposal's arithmetic (and the image) is the same as without it.
+
+// Rows [0, n) of `denseRays` / `denseSlots`: the slots of `q.proposals` in state `state`, with
+// their ray from `from` (row = slot).
+size_t gatherBySlot(ErptQueues& q, const RayQueue& from, uint8_t state) {
+  q.denseSlots.clear();
+  for (size_t i = 0; i < q.chains.size(); ++i) {
+    if (q.proposals.state[i] != state) continue;
+    q.denseRays.copyRow(q.denseSlots.size(), from, i);
+    q.denseSlots.push_back(uint32_t(i));
+  }
+  return q.denseSlots.size();
+}
+
+// Keeps the rows of `denseRays` whose proposal still walks, moved down in order.
+size_t keepWalking(ErptQueues& q) {
+  size_t kept = 0;
+  for (size_t k = 0; k < q.denseSlots.size(); ++k) {
+    const uint32_t slot = q.denseSlots[k];
+    if (q.proposals.state[slot] != kProposalWalking) continue;
+    if (kept != k) q.denseRays.copyRow(kept, q.denseRays, k);
+    q.denseSlots[kept++] = slot;
+  }
+  q.denseSlots.resize(kept);
+  return kept;
+}
+
 }  // namespace
 
 uint64_t ChainStep::propose(ErptQueues& q) const {
@@ -28,24 +60,35 @@ uint64_t ChainStep::traceAndConnect(ErptQueues& q) const {
   const size_t c = q.chains.size();
   std::atomic<uint64_t> rays{0};
   std::atomic<size_t> walking{0};
-  // A walk bounces at most once per vertex of the longest path.
-  for (int pass = 0; pass < kMaxChainVertices; ++pass) {
-    forEachRange("erpt intersect", c, grain, [&](IndexRange r) {
-      const size_t traced = raysInFlight(q.rays, r);
-      rays += traced;
-      // Later passes carry only the proposals still walking a specular chain: ranges without
-      // any are not handed to Embree (their hits are not read).
-      if (traced > 0) tracer.intersect(q.rays, q.hits, r, RayCoherence::Incoherent);
-    }, times);
-    forEachRange("erpt trace", c, grain, [&](IndexRange r) {
-      walking += stageErptTrace(ctx, q.chains, q.chainVertices, q.proposals, q.proposalVertices, q.rays, q.hits,
-                                q.shadowRays, r);
-    }, times);
-    if (walking.exchange(0) == 0) break;
+  // First bounce: nearly every slot has a ray, the queue is traced as it is.
+  forEachRange("erpt intersect", c, grain, [&](IndexRange r) {
+    const size_t traced = raysInFlight(q.rays, r);
+    rays += traced;
+    if (traced > 0) tracer.intersect(q.rays, q.hits, r, RayCoherence::Incoherent);
+  }, times);
+  forEachRange("erpt trace", c, grain, [&](IndexRange r) {
+    walking += stageErptTrace(ctx, q.chains, q.chainVertices, q.proposals, q.proposalVertices, q.rays, q.hits,
+                              q.shadowRays, r);
+  }, times);
+  // Later bounces (a walk bounces at most once per vertex of the longest path): dense.
+  if (walking > 0) {
+    size_t n = gatherBySlot(q, q.rays, kProposalWalking);
+    for (int pass = 1; pass < kMaxChainVertices && n > 0; ++pass) {
+      rays += n;
+      forEachRange("erpt intersect", n, grain, [&](IndexRange r) {
+        tracer.intersect(q.denseRays, q.denseHits, r, RayCoherence::Incoherent);
+      }, times);
+      forEachRange("erpt trace", n, grain, [&](IndexRange r) {
+        stageErptTrace(ctx, q.chains, q.chainVertices, q.proposals, q.proposalVertices, q.denseRays, q.denseHits,
+                       q.shadowRays, r, q.denseSlots.data());
+      }, times);
+      n = keepWalking(q);
+    }
   }
-  forEachRange("erpt connect", c, grain, [&](IndexRange r) {
-    rays += raysInFlight(q.shadowRays, r);
-    stageErptConnect(tracer, q.shadowRays, q.proposals, r);
+  const size_t connections = gatherBySlot(q, q.shadowRays, kProposalConnecting);
+  rays += connections;
+  forEachRange("erpt connect", connections, grain, [&](IndexRange r) {
+    stageErptConnect(tracer, q.denseRays, q.proposals, r, q.denseSlots.data());
   }, times);
   return rays;
 }

@@ -14,6 +14,9 @@ ErptQueues::ErptQueues(size_t capacity) {
   prepareRays(rays, capacity);
   prepareRays(shadowRays, capacity);
   hits.resize(capacity);
+  prepareRays(denseRays, capacity);
+  denseHits.resize(capacity);
+  denseSlots.reserve(capacity);
   deposits.resize(capacity * kDepositsPerStep);
   for (size_t i = 0; i < capacity; ++i) chains.stepsLeft[i] = 0;
 }

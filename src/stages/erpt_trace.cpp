@@ -15,9 +15,9 @@ namespace erpt {
 
 namespace {
 
-void complete(ProposalQueue& p, RayQueue& rays, size_t i) {
+void complete(ProposalQueue& p, RayQueue& rays, size_t i, size_t ray) {
   p.state[i] = kProposalComplete;
-  disableRay(rays, i);
+  disableRay(rays, ray);
 }
 
 // Sets the occlusion ray between two points; `toInfinity` follows `dir` out of the scene.
@@ -31,11 +31,13 @@ void setConnection(RayQueue& shadowRays, size_t i, const PathVertex& from, Vec3 
 
 size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                       ProposalQueue& proposals, VertexQueue& proposalVertices, RayQueue& rays, const HitQueue& hits,
-                      RayQueue& shadowRays, IndexRange range) {
+                      RayQueue& shadowRays, IndexRange range, const uint32_t* slotOf) {
   const MeasureContext& mc = ctx.measure;
   const Scene& scene = mc.scene;
   size_t walking = 0;
-  for (size_t i = range.begin; i < range.end; ++i) {
+  for (size_t k = range.begin; k < range.end; ++k) {
+    // Row k of the ray and hit queues belongs to chain slot i.
+    const size_t i = slotOf ? slotOf[k] : k;
     if (proposals.state[i] != kProposalWalking) continue;
     disableRay(shadowRays, i);
     const int n = chains.vertexCount[i];
@@ -46,20 +48,20 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
     // The current path's vertices j - 1, j, j + 1 (all a walk step looks at).
     const size_t chainRow = i * kMaxChainVertices + size_t(j);
     PathVertex window[3];
-    for (int k = 0; k < 3; ++k)
-      if (j - 1 + k >= 0 && j - 1 + k < n) loadPathVertex(chainVertices, chainRow - 1 + size_t(k), window[k]);
+    for (int w = 0; w < 3; ++w)
+      if (j - 1 + w >= 0 && j - 1 + w < n) loadPathVertex(chainVertices, chainRow - 1 + size_t(w), window[w]);
     const PathVertex& expected = window[1];
-    const Vec3 origin = rays.orgAt(i);
-    const Vec3 dir = normalize(rays.dirAt(i));
+    const Vec3 origin = rays.orgAt(k);
+    const Vec3 dir = normalize(rays.dirAt(k));
     const size_t row = chainRow;
     // Reaching the light by tracing ends the walk only where the proposal has nothing to
     // connect to.
     const bool tracesToLight = last && connectTo < 0;
 
     PathVertex z;
-    if (hits.geomID[i] == kNoHit) {
+    if (hits.geomID[k] == kNoHit) {
       if (!tracesToLight || expected.kind != kEnvironmentVertex) {
-        rejectProposal(proposals, rays, i, kRejectMissed);
+        rejectProposal(proposals, rays, i, kRejectMissed, k);
         continue;
       }
       z.p = origin + dir * 1e6f;
@@ -67,10 +69,10 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
       z.kind = kEnvironmentVertex;
       z.emitter = expected.emitter;
       storePathVertex(proposalVertices, row, z);
-      complete(proposals, rays, i);
+      complete(proposals, rays, i, k);
       continue;
     }
-    const SurfacePoint sp = surfaceAt(scene, hits.primID[i], hits.u[i], hits.v[i]);
+    const SurfacePoint sp = surfaceAt(scene, hits.primID[k], hits.u[k], hits.v[k]);
     const Material& m = scene.materials[size_t(sp.material)];
     z.p = sp.position;
     z.ns = sp.shading.n;
@@ -83,11 +85,11 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
 
     if (expected.kind == kLightVertex) {
       if (!tracesToLight || isBlack(mc.lights.emitted(sp, -dir))) {
-        rejectProposal(proposals, rays, i, kRejectKindChanged);
+        rejectProposal(proposals, rays, i, kRejectKindChanged, k);
         continue;
       }
       storePathVertex(proposalVertices, row, z);
-      complete(proposals, rays, i);
+      complete(proposals, rays, i, k);
       continue;
     }
     // Specular vertices need a Dirac lobe (plastic's coat has one too), non-specular ones a
@@ -96,7 +98,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
                              : expected.kind == kNonSpecularVertex ? !m.isPureSpecular()
                                                                    : false;
     if (!kindMatches) {
-      rejectProposal(proposals, rays, i, kRejectKindChanged);
+      rejectProposal(proposals, rays, i, kRejectKindChanged, k);
       continue;
     }
     storePathVertex(proposalVertices, row, z);
@@ -105,11 +107,11 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
       // Follow the same lobe (reflection or transmission) as the current path.
       Vec3 wo;
       if (last || !specularDirection(m, sp.shading.toLocal(-dir), reflectsAt(window, 1), wo)) {
-        rejectProposal(proposals, rays, i, kRejectKindChanged);
+        rejectProposal(proposals, rays, i, kRejectKindChanged, k);
         continue;
       }
       const Vec3 next = sp.shading.toWorld(wo);
-      setRay(rays, i, offsetOrigin(sp.position, sp.geometricNormal, next), next, 0.0f,
+      setRay(rays, k, offsetOrigin(sp.position, sp.geometricNormal, next), next, 0.0f,
              std::numeric_limits<float>::infinity());
       proposals.cursor[i] = int8_t(j + walk);
       ++walking;
@@ -124,7 +126,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
       const uint32_t step = chains.step[i];
       const Vec3 d = perturbDirection(directionBetween(window[1], next), uniformFloat(key, stepDim(step, kDimPerturb + 2 * j)),
                                       uniformFloat(key, stepDim(step, kDimPerturb + 2 * j + 1)));
-      setRay(rays, i, offsetOrigin(z.p, z.ng, d), d, 0.0f, std::numeric_limits<float>::infinity());
+      setRay(rays, k, offsetOrigin(z.p, z.ng, d), d, 0.0f, std::numeric_limits<float>::infinity());
       proposals.cursor[i] = int8_t(j + walk);
       ++walking;
       continue;
@@ -133,7 +135,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
       // Connect to the eye (rule 5): the film position is where z projects.
       float fx, fy;
       if (!mc.camera.project(z.p, fx, fy) || !(mc.film.density(fx, fy) > 0)) {
-        rejectProposal(proposals, rays, i, kRejectOffFilm);
+        rejectProposal(proposals, rays, i, kRejectOffFilm, k);
         continue;
       }
       proposals.filmX[i] = fx;
@@ -147,11 +149,11 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
       const Vec3 d = environment ? -target.ns : normalize(target.p - z.p);
       setConnection(shadowRays, i, z, environment ? Vec3(0.0f) : offsetOrigin(target.p, target.ng, -d), environment, d);
     } else {
-      rejectProposal(proposals, rays, i, kRejectKindChanged);  // the walk should have reached the light
+      rejectProposal(proposals, rays, i, kRejectKindChanged, k);  // the walk should have reached the light
       continue;
     }
     proposals.state[i] = kProposalConnecting;
-    disableRay(rays, i);
+    disableRay(rays, k);
   }
   return walking;
 }

@@ -24,6 +24,7 @@ struct ErptRun {
   CausticAngle causticAngle = CausticAngle::Erpt;
   bool expected = false;
   FilterKind filter = FilterKind::Box;
+  int maxConsecutive = 0, pmFilterRadius = -1;  // noise filters, off
 };
 
 RgbImage renderErptImage(const Scene& scene, const ErptRun& r, RenderStats* statsOut = nullptr) {
@@ -42,6 +43,8 @@ RgbImage renderErptImage(const Scene& scene, const ErptRun& r, RenderStats* stat
   s.erpt.lensShape = r.lensShape;
   s.erpt.causticAngle = r.causticAngle;
   s.erpt.expectedDeposit = r.expected;
+  s.erpt.maxConsecutive = r.maxConsecutive;
+  s.erpt.pmFilterRadius = r.pmFilterRadius;
   RenderStats stats;
   RgbImage img = render(scene, s, stats);
   EXPECT_EQ(stats.invalidSamples, 0u);
@@ -193,21 +196,43 @@ TEST(StatisticalErpt, CausticVeachChainsKeepThePathTracedDistribution) {
   expectStationary(MutationStrategy::CausticOnly, 0.075, LensShape::Square, CausticAngle::Veach);
 }
 
-// The same scene, seed and options give the same image at 1 and 2 threads, bit for bit.
-TEST(Erpt, SameImageForAnyThreadCount) {
-  const Scene scene = loadScene(test::sourceDir() + "/scenes/default/scene.xml");
+// A small ERPT render of the default scene (caustics, specular chains).
+ErptRun smallDefaultSceneRun() {
   ErptRun r;
   r.spp = 4;
   r.mutations = 20;
   r.chainLength = 20;
   r.size = 40;
   r.directSamples = 4;
-  r.strategy = MutationStrategy::Mixed;
+  return r;
+}
+
+void expectSameImageAtOneAndTwoThreads(ErptRun r) {
+  const Scene scene = loadScene(test::sourceDir() + "/scenes/default/scene.xml");
   r.threads = 1;
   const RgbImage a = renderErptImage(scene, r);
   r.threads = 2;
   const RgbImage b = renderErptImage(scene, r);
   test::expectBitIdentical(a, b);
+}
+
+// The same scene, seed and options give the same image at 1 and 2 threads, bit for bit.
+TEST(Erpt, SameImageForAnyThreadCount) {
+  ErptRun r = smallDefaultSceneRun();
+  r.strategy = MutationStrategy::Mixed;
+  expectSameImageAtOneAndTwoThreads(r);
+}
+
+// The same with a filter wider than a pixel (deposits reach up to four pixels), expected-value
+// deposits and both noise filters (per-chain run state, the proposal tally); proposals walking
+// specular chains go through the dense batches of later bounces in both.
+TEST(Erpt, SameImageForAnyThreadCountWithTentFilterAndNoiseFilters) {
+  ErptRun r = smallDefaultSceneRun();
+  r.filter = FilterKind::Tent;
+  r.expected = true;
+  r.maxConsecutive = 5;
+  r.pmFilterRadius = 3;
+  expectSameImageAtOneAndTwoThreads(r);
 }
 
 }  // namespace
