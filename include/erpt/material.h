@@ -12,6 +12,9 @@ namespace erpt {
 enum class BsdfKind { Diffuse, Conductor, RoughConductor, Dielectric, ThinDielectric, Plastic, RoughPlastic, RoughDielectric,
                       Phong };
 enum class MicrofacetKind { Beckmann, GGX };
+// A wrapper that perturbs the shading normal at every hit (shading_maps.cpp): `normalmap`
+// (a tangent-space normal texture, Mitsuba 3) or `bumpmap` (a height texture, both dialects).
+enum class ShadingMap { None, Normal, Bump };
 
 struct Material {
   std::string name;  // the XML id, or the plugin type when anonymous
@@ -33,6 +36,9 @@ struct Material {
   // opacities stochastically, which the loader warns about.
   bool masked = false;
   ColorParam opacity{Color(1.0f)};
+  ShadingMap shadingMap = ShadingMap::None;
+  int shadingTexture = -1;  // index into Scene::textures: the normals (raw RGB) or the heights
+  float bumpScale = 1;      // bumpmap: heights are multiplied by this (Mitsuba 3's `scale`)
   // Derived when the scene is finalized:
   float fdrInternal = 0;             // plastic: diffuse Fresnel reflectance seen from inside
   float specularSamplingWeight = 0;  // plastic: share of samples given to the coat; phong: to the specular lobe

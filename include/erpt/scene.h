@@ -137,6 +137,9 @@ struct Scene {
   // sampling picks points by area).
   bool opaqueAt(uint32_t triangle, float b1, float b2) const;
   bool hasMasks() const;
+  // Some material perturbs shading normals (normalmap / bumpmap); set by finalize, read by
+  // surfaceAt so scenes without maps pay nothing.
+  bool hasShadingMaps = false;
 
   // Resolves the (possibly textured) colours of a material at texture coordinates (u, v).
   SurfaceColors surfaceColors(int material, float u, float v) const;

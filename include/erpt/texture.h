@@ -20,6 +20,9 @@ struct Texture {
   std::vector<Color> texels;
 
   Color eval(float u, float v) const;
+  // Derivatives of the luminance of eval() with respect to u and v (bump mapping): exact for
+  // the bilinear interpolation inside a texel cell; 0 for the checkerboard (piecewise constant).
+  void luminanceGradient(float u, float v, float& du, float& dv) const;
 };
 
 // A colour parameter: a constant, or a texture from Scene::textures.

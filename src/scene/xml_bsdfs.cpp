@@ -1,4 +1,5 @@
 // <bsdf> and <texture> plugins.
+#include <cmath>
 #include <filesystem>
 
 #include "erpt/bsdf.h"
@@ -55,7 +56,8 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     for (const pugi::xml_node& c : children) {
       std::string tag = c.name();
       if (tag == "bsdf") return bsdf(doc, c);
-      if (tag == "ref") return materialById(doc, c, attribute(doc, c, "id"));
+      if (tag == "ref" && !textureIds_.count(attribute(doc, c, "id")))
+        return materialById(doc, c, attribute(doc, c, "id"));
     }
     return -1;
   };
@@ -79,6 +81,18 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     m.masked = true;
     m.opacity = props.getColorParam("opacity", Color(0.5f), scene_);  // Mitsuba's default
     warnPartialOpacity(m.opacity, props.where());
+  } else if (type == "normalmap" || type == "bumpmap") {
+    int inner = nested();
+    if (inner < 0) throw InputError(doc.where(node), type + " needs a nested <bsdf>");
+    const int map = shadingMapTexture(doc, props, children);
+    if (map < 0) throw InputError(doc.where(node), type + " needs a <texture> (the " +
+                                                       (type == "normalmap" ? "normals" : "heights") + ")");
+    m = scene_.materials[inner];
+    m.name = id.empty() ? type + "(" + m.name + ")" : id;
+    m.shadingMap = type == "normalmap" ? ShadingMap::Normal : ShadingMap::Bump;
+    m.shadingTexture = map;
+    if (type == "bumpmap") m.bumpScale = props.getFloat("scale", 1.0f);
+    if (!std::isfinite(m.bumpScale)) throw InputError(props.find("scale")->where, "bumpmap scale must be finite");
   } else if (type == "conductor" || type == "roughconductor") {
     m.kind = type == "conductor" ? BsdfKind::Conductor : BsdfKind::RoughConductor;
     // Mitsuba 0.6 defaults to copper, Mitsuba 3 to a perfect mirror.
@@ -150,6 +164,19 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
   return index;
 }
 
+// The texture of a normalmap / bumpmap: Mitsuba 3 names it (`normalmap`, or anything for a
+// bumpmap), Mitsuba 0.6 nests it unnamed; by value or by <ref>.
+int SceneBuilder::shadingMapTexture(const Document& doc, const Properties& props,
+                                    const std::vector<pugi::xml_node>& children) {
+  if (const Property* p = props.findTag("texture")) return p->texture;
+  for (const pugi::xml_node& c : children) {
+    const std::string tag = c.name();
+    if (tag == "texture") return texture(doc, c);
+    if (tag == "ref" && textureIds_.count(attribute(doc, c, "id"))) return textureIds_.at(attribute(doc, c, "id"));
+  }
+  return -1;
+}
+
 void SceneBuilder::warnPartialOpacity(const ColorParam& opacity, const SourceLocation& where) {
   auto partial = [](Color c) {
     const float a = (c.x + c.y + c.z) / 3;
@@ -170,7 +197,8 @@ void SceneBuilder::warnPartialOpacity(const ColorParam& opacity, const SourceLoc
 }
 
 int SceneBuilder::texture(const Document& doc, const pugi::xml_node& node) {
-  Properties props = readProperties(doc, node);
+  std::vector<pugi::xml_node> children;  // a `scale` texture's nested one
+  Properties props = readProperties(doc, node, &children);
   std::string type = attribute(doc, node, "type");
   std::string id = attribute(doc, node, "id", false);
   Texture t;
@@ -194,6 +222,19 @@ int SceneBuilder::texture(const Document& doc, const pugi::xml_node& node) {
     t.height = img.height;
     t.texels = std::move(img.pixels);
     for (const char* ignored : {"filter_type", "wrap_mode", "gamma"}) props.find(ignored);
+  } else if (type == "scale") {
+    // A texture times a constant (Mitsuba 0.6's way of scaling a bump map's heights): baked.
+    const Property* inner = props.findTag("texture");
+    int nestedTexture = inner ? inner->texture : -1;
+    for (const pugi::xml_node& c : children)
+      if (nestedTexture < 0 && std::string(c.name()) == "texture") nestedTexture = texture(doc, c);
+    if (nestedTexture < 0) throw InputError(doc.where(node), "scale texture needs a nested <texture>");
+    const float factor = props.getFloat("scale", 1.0f);
+    if (!std::isfinite(factor)) throw InputError(props.find("scale")->where, "texture scale must be finite");
+    t = scene_.textures[size_t(nestedTexture)];
+    for (Color& c : t.texels) c = c * factor;
+    t.color0 = t.color0 * factor;
+    t.color1 = t.color1 * factor;
   } else if (type == "checkerboard") {
     t.kind = TextureKind::Checkerboard;
     t.color0 = props.getColor("color0", Color(0.4f));
@@ -203,6 +244,9 @@ int SceneBuilder::texture(const Document& doc, const pugi::xml_node& node) {
     t.color0 = t.color1 = Color(0.5f);
     props = Properties(props.plugin(), props.where());
   }
+  if (type != "scale")
+    for (const pugi::xml_node& c : children)
+      scene_.warnings.add(doc.where(c), "<" + std::string(c.name()) + "> is not supported inside <texture>; ignored");
   props.warnUnused(scene_.warnings);
   int index = int(scene_.textures.size());
   scene_.textures.push_back(std::move(t));

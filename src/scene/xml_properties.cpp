@@ -13,6 +13,15 @@ const Property* Properties::find(const std::string& name) const {
   return &it->second;
 }
 
+const Property* Properties::findTag(const std::string& tag) const {
+  for (auto& [name, p] : props_)
+    if (p.tag == tag) {
+      p.used = true;
+      return &p;
+    }
+  return nullptr;
+}
+
 const Property& Properties::require(const std::string& name, const char* tag) const {
   const Property* p = find(name);
   if (!p) throw InputError(where_, std::string("missing parameter '") + name + "' of " + plugin_);

@@ -27,6 +27,8 @@ class Properties {
   void set(const std::string& name, Property p);
   bool has(const std::string& name) const { return props_.count(name) != 0; }
   const Property* find(const std::string& name) const;
+  // The first (by name) parameter with this tag, marked used; null if none.
+  const Property* findTag(const std::string& tag) const;
 
   float getFloat(const std::string& name, float fallback) const;
   int getInt(const std::string& name, int fallback) const;

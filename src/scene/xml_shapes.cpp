@@ -109,6 +109,11 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const 
     scene_.warnings.add(where, "a masked sphere is tessellated (cut-outs apply to triangles)");
     exactSphere = false;
   }
+  if (exactSphere && scene_.materials[size_t(material)].shadingMap != ShadingMap::None) {
+    // The maps read the triangles' uv derivatives.
+    scene_.warnings.add(where, "a normal- or bump-mapped sphere is tessellated (the maps apply to triangles)");
+    exactSphere = false;
+  }
 
   int shapeIndex = int(scene_.shapes.size());
   ShapeInfo info;
@@ -320,6 +325,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
   scene.file = path;
   xml::SceneBuilder builder(scene, options);
   builder.loadFile(path, 0);
+  for (const Material& m : scene.materials) scene.hasShadingMaps |= m.shadingMap != ShadingMap::None;
   if (scene.primitiveCount() == 0 && scene.emitters.empty())
     throw InputError({path, 0}, "the scene has no geometry and no emitters");
   return scene;

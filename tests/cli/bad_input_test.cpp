@@ -42,6 +42,19 @@ const BadCase kCases[] = {
      "<scene version=\"3.0.0\">\n  <shape type=\"cube\"/>\n  <emitter type=\"envmap\">\n"
      "    <string name=\"filename\" value=\"sky.hdr\"/>\n  </emitter>\n</scene>\n",
      "sky.hdr=not an image", "", 0, "sky.hdr", "cannot read image"},
+    {"NormalMapWithoutTexture",
+     "<scene version=\"3.0.0\">\n  <shape type=\"cube\">\n    <bsdf type=\"normalmap\">\n"
+     "      <bsdf type=\"diffuse\"/>\n    </bsdf>\n  </shape>\n</scene>\n",
+     nullptr, "", 3, nullptr, "normalmap needs a <texture>"},
+    {"BumpMapWithoutBsdf",
+     "<scene version=\"3.0.0\">\n  <shape type=\"cube\">\n    <bsdf type=\"bumpmap\">\n"
+     "      <texture type=\"checkerboard\"/>\n    </bsdf>\n  </shape>\n</scene>\n",
+     nullptr, "", 3, nullptr, "bumpmap needs a nested <bsdf>"},
+    {"BumpMapHeightsMissing",
+     "<scene version=\"3.0.0\">\n  <shape type=\"cube\">\n    <bsdf type=\"bumpmap\">\n"
+     "      <texture type=\"bitmap\">\n        <string name=\"filename\" value=\"h.exr\"/>\n      </texture>\n"
+     "      <bsdf type=\"diffuse\"/>\n    </bsdf>\n  </shape>\n</scene>\n",
+     nullptr, "", 5, nullptr, "not found"},
     {"BadNumber",
      "<scene version=\"3.0.0\">\n  <sensor type=\"perspective\">\n    <float name=\"fov\" value=\"4o\"/>\n  "
      "</sensor>\n  <shape type=\"cube\"/>\n</scene>\n",

@@ -9,6 +9,7 @@
 #include "support/block_bias.h"
 #include "support/environment_scene.h"
 #include "support/mask_scene.h"
+#include "support/shading_map_scene.h"
 #include "support/test_support.h"
 
 namespace erpt {
@@ -131,6 +132,17 @@ TEST(StatisticalErpt, MaskCutOutMatchesPathTracerBlockByBlock) {
   const Scene scene = loadScene(test::writeCheckerMaskScene(dir, false));
   ASSERT_TRUE(scene.hasMasks());
   expectErptMatchesPathTracerBlockByBlock(scene, 16, everyPathByErpt(200), 14000);
+}
+
+// Normal and bump maps: the shading normals ERPT's vertices store are the perturbed ones, so
+// the chains' BSDF values (and the lens perturbation's connections onto a mapped floor and
+// wall, next to the glass sphere's caustic) must match what the path tracer shaded with.
+TEST(StatisticalErpt, NormalAndBumpMapsMatchPathTracerBlockByBlock) {
+  test::TempDir dir;
+  const Scene scene = loadScene(test::writeMappedBoxScene(dir));
+  ASSERT_TRUE(scene.hasShadingMaps);
+  ASSERT_TRUE(scene.warnings.messages.empty()) << scene.warnings.messages.front();
+  expectErptMatchesPathTracerBlockByBlock(scene, 16, everyPathByErpt(200), 15000);
 }
 
 }  // namespace
