@@ -10,7 +10,7 @@
 namespace erpt {
 
 enum class BsdfKind { Diffuse, Conductor, RoughConductor, Dielectric, ThinDielectric, Plastic, RoughPlastic, RoughDielectric,
-                      Phong };
+                      Phong, Blend };
 enum class MicrofacetKind { Beckmann, GGX };
 // A wrapper that perturbs the shading normal at every hit (shading_maps.cpp): `normalmap`
 // (a tangent-space normal texture, Mitsuba 3) or `bumpmap` (a height texture, both dialects).
@@ -43,17 +43,57 @@ struct Material {
   float fdrInternal = 0;             // plastic: diffuse Fresnel reflectance seen from inside
   float specularSamplingWeight = 0;  // plastic: share of samples given to the coat; phong: to the specular lobe
   std::vector<float> coatTransmittance;  // roughplastic: 1 - coat albedo over cos(theta) in [0, 1]
+  // blendbsdf: (1 - w) f_0 + w f_1 with w = blendWeight (its channels' mean, in [0, 1]); the
+  // two parts are whole materials of their own (never blends themselves).
+  std::vector<Material> blendParts;
+  ColorParam blendWeight{Color(0.5f)};
 
   float relativeIOR() const { return intIOR / extIOR; }
   bool isPureSpecular() const {
+    if (kind == BsdfKind::Blend) return blendParts[0].isPureSpecular() && blendParts[1].isPureSpecular();
     return kind == BsdfKind::Conductor || kind == BsdfKind::Dielectric || kind == BsdfKind::ThinDielectric;
   }
-  bool hasSpecular() const { return isPureSpecular() || kind == BsdfKind::Plastic; }
+  bool hasSpecular() const {
+    if (kind == BsdfKind::Blend) return blendParts[0].hasSpecular() || blendParts[1].hasSpecular();
+    return isPureSpecular() || kind == BsdfKind::Plastic;
+  }
 };
 
 // Resolved colour parameters of a material at one surface point.
 struct SurfaceColors {
   Color reflectance, specularReflectance, specularTransmittance;
+  // blendbsdf: the weight of the second part and each part's own colours.
+  float blendWeight = 0;
+  struct Part {
+    Color reflectance, specularReflectance, specularTransmittance;
+  } parts[2];
+  SurfaceColors part(int i) const {
+    SurfaceColors c;
+    c.reflectance = parts[i].reflectance;
+    c.specularReflectance = parts[i].specularReflectance;
+    c.specularTransmittance = parts[i].specularTransmittance;
+    return c;
+  }
 };
+
+// The colours of `m` with each parameter resolved by resolve(const ColorParam&) -> Color (its
+// constant, or its texture at a surface point).
+template <class Resolve>
+SurfaceColors resolveSurfaceColors(const Material& m, Resolve&& resolve) {
+  SurfaceColors c;
+  c.reflectance = resolve(m.reflectance);
+  c.specularReflectance = resolve(m.specularReflectance);
+  c.specularTransmittance = resolve(m.specularTransmittance);
+  if (m.kind == BsdfKind::Blend) {
+    const Color w = resolve(m.blendWeight);
+    const float mean = (w.x + w.y + w.z) / 3;
+    c.blendWeight = mean > 0 ? (mean < 1 ? mean : 1.0f) : 0.0f;
+    for (int k = 0; k < 2; ++k) {
+      const Material& p = m.blendParts[size_t(k)];
+      c.parts[k] = {resolve(p.reflectance), resolve(p.specularReflectance), resolve(p.specularTransmittance)};
+    }
+  }
+  return c;
+}
 
 }  // namespace erpt

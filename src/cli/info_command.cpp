@@ -23,6 +23,7 @@ const char* kindName(BsdfKind k) {
     case BsdfKind::Dielectric: return "dielectric";
     case BsdfKind::ThinDielectric: return "thindielectric";
     case BsdfKind::Plastic: return "plastic";
+    case BsdfKind::Blend: return "blendbsdf";
     case BsdfKind::RoughPlastic: return "roughplastic";
     case BsdfKind::RoughDielectric: return "roughdielectric";
     case BsdfKind::Phong: return "phong";

@@ -245,16 +245,45 @@ bool sampleThinDielectric(const Material& m, const SurfaceColors& c, Vec3 wi, fl
   return true;
 }
 
+// blendbsdf: the probability of each part, (1 - w, w).
+float partWeight(const SurfaceColors& c, int k) { return k == 1 ? c.blendWeight : 1 - c.blendWeight; }
+
+// blendbsdf: part k with probability (1 - w, w), u1 reused for the part's own lobe choice. A
+// Dirac sample keeps the part's weight (its value and its probability both carry the part's
+// weight); otherwise the density and value are the blend's, over both parts' smooth lobes.
+bool sampleBlend(const Material& m, const SurfaceColors& c, Vec3 wi, float u1, float u2, float u3, BsdfSample& s) {
+  const float w = c.blendWeight;
+  const int k = u1 < w ? 1 : 0;
+  const float p = partWeight(c, k);
+  if (!(p > 0)) return false;
+  const float u = k == 1 ? u1 / w : (u1 - w) / (1 - w);
+  if (!bsdfSample(m.blendParts[size_t(k)], c.part(k), wi, std::min(u, 0x1.fffffep-1f), u2, u3, s)) return false;
+  if (s.delta) {
+    s.pdf *= p;
+    return true;
+  }
+  s.pdf = bsdfPdf(m, c, wi, s.wo);
+  if (!(s.pdf > 0)) return false;
+  s.weight = bsdfEval(m, c, wi, s.wo) / s.pdf;
+  return true;
+}
+
 }  // namespace
 
 Color bsdfEval(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
+  if (m.kind == BsdfKind::Blend)
+    return bsdfEval(m.blendParts[0], c.part(0), wi, wo) * partWeight(c, 0) +
+           bsdfEval(m.blendParts[1], c.part(1), wi, wo) * partWeight(c, 1);
   if (m.kind == BsdfKind::RoughDielectric) return evalRoughDielectric(m, c, wi, wo);
   float flip = sideFlip(m, wi);
   if (flip == 0 || isTransmissive(m.kind)) return Color(0.0f);
   return evalFront(m, c, flipZ(wi, flip), flipZ(wo, flip));
 }
 
-float bsdfPdf(const Material& m, const SurfaceColors&, Vec3 wi, Vec3 wo) {
+float bsdfPdf(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
+  if (m.kind == BsdfKind::Blend)
+    return bsdfPdf(m.blendParts[0], c.part(0), wi, wo) * partWeight(c, 0) +
+           bsdfPdf(m.blendParts[1], c.part(1), wi, wo) * partWeight(c, 1);
   if (m.kind == BsdfKind::RoughDielectric) return pdfRoughDielectric(m, wi, wo);
   float flip = sideFlip(m, wi);
   if (flip == 0 || isTransmissive(m.kind)) return 0.0f;
@@ -264,6 +293,7 @@ float bsdfPdf(const Material& m, const SurfaceColors&, Vec3 wi, Vec3 wo) {
 bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wiWorldSide, float u1, float u2, float u3,
                 BsdfSample& s) {
   s = BsdfSample{};
+  if (m.kind == BsdfKind::Blend) return sampleBlend(m, c, wiWorldSide, u1, u2, u3, s);
   if (m.kind == BsdfKind::Dielectric) return sampleDielectric(m, c, wiWorldSide, u1, s);
   if (m.kind == BsdfKind::ThinDielectric) return sampleThinDielectric(m, c, wiWorldSide, u1, s);
   if (m.kind == BsdfKind::RoughDielectric) return sampleRoughDielectric(m, c, wiWorldSide, u1, u2, u3, s);
@@ -318,6 +348,19 @@ bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wiWorldSide, flo
 }
 
 bool bsdfDeltaLobe(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo, Color& value, float& probability) {
+  if (m.kind == BsdfKind::Blend) {
+    // The parts' Dirac lobes along wo, each weighted by its part's probability.
+    value = Color(0.0f);
+    probability = 0;
+    for (int k = 0; k < 2; ++k) {
+      Color v;
+      float p;
+      if (!bsdfDeltaLobe(m.blendParts[size_t(k)], c.part(k), wi, wo, v, p)) continue;
+      value += v * partWeight(c, k);
+      probability += p * partWeight(c, k);
+    }
+    return probability > 0;
+  }
   const bool reflection = wi.z * wo.z > 0;
   // A Dirac lobe has no value off its direction: a path through this vertex must leave along
   // the mirror (or refraction) direction, up to the rounding of vertices traced along it.
@@ -359,6 +402,8 @@ bool bsdfDeltaLobe(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo, 
 }
 
 bool specularDirection(const Material& m, Vec3 wi, bool reflection, Vec3& wo) {
+  if (m.kind == BsdfKind::Blend)
+    return specularDirection(m.blendParts[0], wi, reflection, wo) || specularDirection(m.blendParts[1], wi, reflection, wo);
   if (reflection) {
     if (!m.hasSpecular()) return false;
     wo = mirror(wi);
@@ -377,6 +422,8 @@ bool specularDirection(const Material& m, Vec3 wi, bool reflection, Vec3& wo) {
 }
 
 float deltaRadianceScale(const Material& m, Vec3 wi, Vec3 wo) {
+  if (m.kind == BsdfKind::Blend)  // the part whose lobe refracts (specularDirection's order)
+    return deltaRadianceScale(m.blendParts[m.blendParts[0].kind == BsdfKind::Dielectric ? 0 : 1], wi, wo);
   if (m.kind != BsdfKind::Dielectric || wi.z * wo.z > 0) return 1.0f;
   float scale = refractionScale(m, wi);
   return scale * scale;

@@ -73,6 +73,7 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     m = scene_.materials[inner];
     m.name = id.empty() ? "twosided(" + m.name + ")" : id;
     m.twoSided = true;
+    for (Material& part : m.blendParts) part.twoSided = true;  // a blend's parts do the shading
   } else if (type == "mask") {
     int inner = nested();
     if (inner < 0) throw InputError(doc.where(node), "mask needs a nested <bsdf>");
@@ -81,6 +82,26 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     m.masked = true;
     m.opacity = props.getColorParam("opacity", Color(0.5f), scene_);  // Mitsuba's default
     warnPartialOpacity(m.opacity, props.where());
+  } else if (type == "blendbsdf") {
+    m.kind = BsdfKind::Blend;
+    for (const pugi::xml_node& c : children) {
+      const std::string tag = c.name();
+      const bool isBsdf = tag == "bsdf" || (tag == "ref" && !textureIds_.count(attribute(doc, c, "id")));
+      if (!isBsdf) continue;
+      if (m.blendParts.size() == 2) throw InputError(doc.where(c), "blendbsdf takes two nested BSDFs, not more");
+      Material part = scene_.materials[size_t(tag == "bsdf" ? bsdf(doc, c) : materialById(doc, c, attribute(doc, c, "id")))];
+      if (part.kind == BsdfKind::Blend) {
+        w.add(doc.where(c), "a blendbsdf inside a blendbsdf is not supported; using its first BSDF");
+        Material first = part.blendParts[0];
+        part = first;
+      }
+      m.blendParts.push_back(part);
+    }
+    if (m.blendParts.size() != 2) throw InputError(doc.where(node), "blendbsdf needs two nested BSDFs");
+    m.blendWeight = props.getColorParam("weight", Color(0.5f), scene_);
+    const Color wv = m.blendWeight.value;
+    if (m.blendWeight.texture < 0 && !(wv.x >= 0 && wv.x <= 1 && wv.y >= 0 && wv.y <= 1 && wv.z >= 0 && wv.z <= 1))
+      throw InputError(props.find("weight")->where, "blendbsdf weight must be in [0, 1]");
   } else if (type == "normalmap" || type == "bumpmap") {
     int inner = nested();
     if (inner < 0) throw InputError(doc.where(node), type + " needs a nested <bsdf>");

@@ -351,9 +351,8 @@ bool Scene::hasMasks() const {
 }
 
 SurfaceColors Scene::surfaceColors(int material, float u, float v) const {
-  const Material& m = materials[material];
   auto resolve = [&](const ColorParam& p) { return p.texture < 0 ? p.value : textures[p.texture].eval(u, v); };
-  return {resolve(m.reflectance), resolve(m.specularReflectance), resolve(m.specularTransmittance)};
+  return resolveSurfaceColors(materials[material], resolve);
 }
 
 const Emitter* Scene::environment() const {

@@ -42,6 +42,10 @@ const BadCase kCases[] = {
      "<scene version=\"3.0.0\">\n  <shape type=\"cube\"/>\n  <emitter type=\"envmap\">\n"
      "    <string name=\"filename\" value=\"sky.hdr\"/>\n  </emitter>\n</scene>\n",
      "sky.hdr=not an image", "", 0, "sky.hdr", "cannot read image"},
+    {"BlendWithOnePart",
+     "<scene version=\"3.0.0\">\n  <shape type=\"cube\">\n    <bsdf type=\"blendbsdf\">\n"
+     "      <bsdf type=\"diffuse\"/>\n    </bsdf>\n  </shape>\n</scene>\n",
+     nullptr, "", 3, nullptr, "blendbsdf needs two nested BSDFs"},
     {"NormalMapWithoutTexture",
      "<scene version=\"3.0.0\">\n  <shape type=\"cube\">\n    <bsdf type=\"normalmap\">\n"
      "      <bsdf type=\"diffuse\"/>\n    </bsdf>\n  </shape>\n</scene>\n",

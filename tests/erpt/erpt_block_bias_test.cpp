@@ -134,6 +134,14 @@ TEST(StatisticalErpt, MaskCutOutMatchesPathTracerBlockByBlock) {
   expectErptMatchesPathTracerBlockByBlock(scene, 16, everyPathByErpt(200), 14000);
 }
 
+// blendbsdf: a vertex on a blend of a smooth and a Dirac part is specular or not by the lobe
+// the seed's path took there (as on plastic); the floor's weight is a texture.
+TEST(StatisticalErpt, BlendBsdfMatchesPathTracerBlockByBlock) {
+  const Scene scene = loadScene(test::sourceDir() + "/tests/data/blend-box.xml");
+  ASSERT_TRUE(scene.warnings.messages.empty()) << scene.warnings.messages.front();
+  expectErptMatchesPathTracerBlockByBlock(scene, 16, everyPathByErpt(200), 16000);
+}
+
 // Normal and bump maps: the shading normals ERPT's vertices store are the perturbed ones, so
 // the chains' BSDF values (and the lens perturbation's connections onto a mapped floor and
 // wall, next to the glass sphere's caustic) must match what the path tracer shaded with.

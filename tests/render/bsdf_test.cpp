@@ -35,7 +35,7 @@ Vec3 direction(float thetaDeg, float phiDeg = 30.0f) {
 }
 
 SurfaceColors colorsOf(const Material& m) {
-  return {m.reflectance.value, m.specularReflectance.value, m.specularTransmittance.value};
+  return resolveSurfaceColors(m, [](const ColorParam& p) { return p.value; });
 }
 
 const char* distributionName(MicrofacetKind d) { return d == MicrofacetKind::GGX ? "GGX" : "Beckmann"; }
@@ -130,6 +130,15 @@ Material phong(float exponent, Color diffuseReflectance = Color(0.5f), Color spe
   return finalized(m);  // the lobes' sampling weights
 }
 
+// blendbsdf: (1 - weight) a + weight b.
+Material blend(const Material& a, const Material& b, float weight) {
+  Material m;
+  m.kind = BsdfKind::Blend;
+  m.blendParts = {a, b};
+  m.blendWeight.value = Color(weight);
+  return finalized(m);
+}
+
 bool closeRelative(double a, double b, double relTol, double absTol = 1e-7) {
   return std::abs(a - b) <= relTol * std::max(std::abs(a), std::abs(b)) + absTol;
 }
@@ -219,6 +228,18 @@ std::vector<SamplingCase> samplingCases() {
         cases.push_back({"Phong_n" + numberTag(exponent) + "_wi" + numberTag(theta), phong(exponent), direction(theta),
                          exponent > 100 ? 96 : 48, exponent > 100 ? 24 : 8});
 
+  // blendbsdf: the mixture's density over both parts' smooth lobes; a Dirac part (the mirror)
+  // is missing mass in proportion to its weight.
+  for (float theta : {30.0f, 75.0f}) {
+    cases.push_back({"BlendDiffuseRoughConductor_w0p3_wi" + numberTag(theta),
+                     blend(diffuse(), roughConductor(MicrofacetKind::GGX, 0.2f), 0.3f), direction(theta), 96});
+    cases.push_back({"BlendPhongMirror_w0p6_wi" + numberTag(theta),
+                     blend(phong(40.0f), conductor(kGoldEta, kGoldK), 0.6f), direction(theta)});
+  }
+  cases.push_back({"BlendRoughPlasticRoughDielectric_w0p5_wi40",
+                   blend(roughPlastic(MicrofacetKind::Beckmann, 0.3f), roughDielectric(MicrofacetKind::GGX, 0.3f), 0.5f),
+                   direction(40.0f), 48, 24});
+
   // Two-sided materials hit from the back: everything must happen in the lower hemisphere.
   for (float theta : {120.0f, 170.0f})
     cases.push_back({"TwoSidedDiffuseBack_wi" + numberTag(theta), diffuse(Color(0.5f), true), direction(theta)});
@@ -302,7 +323,9 @@ std::vector<NamedMaterial> nonDeltaMaterials() {
                                    {"phong n 40", phong(40.0f)},
                                    {"phong n 400", phong(400.0f)},
                                    {"twosided roughplastic (back)",
-                                    roughPlastic(MicrofacetKind::GGX, 0.3f, Color(0.5f), false, true), true}};
+                                    roughPlastic(MicrofacetKind::GGX, 0.3f, Color(0.5f), false, true), true},
+                                   {"blend diffuse + roughconductor", blend(diffuse(), roughConductor(MicrofacetKind::GGX, 0.3f), 0.4f)},
+                                   {"blend plastic + phong", blend(plastic(), phong(40.0f), 0.7f)}};
   for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
     for (float alpha : {0.1f, 0.3f, 0.7f}) {
       std::string tag = std::string(distributionName(dist)) + " alpha " + numberTag(alpha);
@@ -433,6 +456,8 @@ TEST(BsdfEnergy, WhiteMaterialsReflectAtMostAllEnergy) {
       // Modified Phong conserves energy when the two reflectances sum to at most 1.
       {"phong n 3, 0.5 + 0.5", phong(3.0f, Color(0.5f), Color(0.5f))},
       {"phong n 100, 0.2 + 0.8", phong(100.0f, Color(0.2f), Color(0.8f))},
+      {"blend diffuse + mirror", blend(diffuse(white), conductor(Color(0.0f), Color(1.0f)), 0.4f)},
+      {"blend dielectric + plastic", blend(dielectric(), plastic(white), 0.5f)},
   };
   for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX})
     for (float alpha : {0.1f, 0.3f, 0.7f})
@@ -502,6 +527,18 @@ TEST(BsdfEnergy, WhiteDiffuseReflectsExactlyEverything) {
     EXPECT_EQ(failures, 0) << "theta_i = " << theta;
     EXPECT_EQ(wrongWeight, 0) << "theta_i = " << theta;
     EXPECT_NEAR(albedo(m, direction(theta), 20000).mean, 1.0, 1e-5);
+  }
+}
+
+// White furnace for blendbsdf: a blend of a white diffuse and a perfect mirror reflects
+// everything, whatever the weight, and each sample's weight is exactly 1 (the part's own).
+TEST(BsdfEnergy, WhiteBlendOfDiffuseAndMirrorReflectsExactlyEverything) {
+  for (float w : {0.0f, 0.25f, 0.8f, 1.0f}) {
+    const Material m = blend(diffuse(Color(1.0f)), conductor(Color(0.0f), Color(1.0f)), w);
+    for (float theta : {0.0f, 60.0f}) {
+      const Albedo a = albedo(m, direction(theta), 20000);
+      EXPECT_NEAR(a.mean, 1.0, 1e-5) << "weight " << w << " theta " << theta;
+    }
   }
 }
 
@@ -701,6 +738,27 @@ TEST(BsdfDelta, PlasticCoatIsAMirrorWithFresnelWeight) {
   EXPECT_NEAR(s.weight.x * s.pdf, fresnelDielectric(wi.z, m.relativeIOR()), 1e-6f);
 }
 
+// blendbsdf's Dirac lobe is its part's, scaled by the part's weight: value and probability.
+TEST(BsdfDelta, BlendedMirrorLobeCarriesItsWeight) {
+  const Material mirror = conductor(kGoldEta, kGoldK), m = blend(diffuse(), mirror, 0.3f);
+  const Vec3 wi = direction(40.0f, 10.0f), wo = Vec3(-wi.x, -wi.y, wi.z);
+  Color value, partValue;
+  float p, partP;
+  ASSERT_TRUE(bsdfDeltaLobe(m, colorsOf(m), wi, wo, value, p));
+  ASSERT_TRUE(bsdfDeltaLobe(mirror, colorsOf(mirror), wi, wo, partValue, partP));
+  EXPECT_NEAR(p, 0.3f * partP, 1e-6f);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(value[ch], 0.3f * partValue[ch], 1e-6f);
+  EXPECT_TRUE(m.hasSpecular());
+  EXPECT_FALSE(m.isPureSpecular());
+  EXPECT_TRUE(blend(mirror, dielectric(), 0.5f).isPureSpecular());
+  // Sampling the mirror part: probability 0.3 x 1, weight the mirror's own.
+  BsdfSample s;
+  ASSERT_TRUE(bsdfSample(m, colorsOf(m), wi, 0.1f, 0.5f, 0.5f, s));
+  ASSERT_TRUE(s.delta);
+  EXPECT_NEAR(s.pdf, 0.3f, 1e-6f);
+  EXPECT_NEAR(s.weight.x * s.pdf, value.x, 1e-6f);
+}
+
 // A Dirac lobe has value only along its own direction: bsdfDeltaLobe evaluated at a direction
 // 0.05 rad off the mirror (or refraction) direction is zero, for every material with one; on
 // the direction it matches what sampling the lobe gives. (Stored paths whose vertex kind says
@@ -712,6 +770,8 @@ TEST(BsdfDelta, DeltaLobeIsZeroOffItsDirection) {
     bool reflection;
   };
   const Case cases[] = {{"conductor", conductor(kGoldEta, kGoldK), true},
+                        {"blend diffuse + conductor", blend(diffuse(), conductor(kGoldEta, kGoldK), 0.3f), true},
+                        {"blend diffuse + dielectric refraction", blend(diffuse(), dielectric(1.5f, 1.0f), 0.6f), false},
                         {"plastic coat", plastic(), true},
                         {"dielectric reflection", dielectric(1.5f, 1.0f), true},
                         {"dielectric refraction", dielectric(1.5f, 1.0f), false},

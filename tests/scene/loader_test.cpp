@@ -188,6 +188,40 @@ TEST(Loader, UnsupportedPluginWarnsWithLocationAndFallsBack) {
   EXPECT_EQ(s.materials[s.mesh.material[0]].kind, BsdfKind::Diffuse);
 }
 
+// blendbsdf: two parts by value or by <ref> (in order), a float or texture weight; twosided
+// around it makes both parts two-sided; a nested blend falls back with a warning; the wrong
+// number of parts or a weight outside [0, 1] is an error.
+TEST(Loader, BlendBsdfPartsWeightAndTwoSided) {
+  TempDir dir;
+  const Scene s = loadScene(dir.write("s.xml", R"(<scene version="3.0.0">
+    <bsdf type="conductor" id="metal"/>
+    <shape type="cube"><bsdf type="twosided"><bsdf type="blendbsdf"><float name="weight" value="0.25"/>
+      <bsdf type="diffuse"><rgb name="reflectance" value="0.1, 0.2, 0.3"/></bsdf><ref id="metal"/></bsdf></bsdf></shape>
+    <shape type="sphere"><bsdf type="blendbsdf">
+      <texture type="checkerboard" name="weight"><rgb name="color0" value="1"/><rgb name="color1" value="0"/></texture>
+      <bsdf type="blendbsdf"><bsdf type="dielectric"/><bsdf type="diffuse"/></bsdf><bsdf type="phong"/></bsdf></shape>
+  </scene>)"));
+  const Material& cube = s.materials[size_t(s.mesh.material[0])];
+  ASSERT_EQ(cube.kind, BsdfKind::Blend);
+  ASSERT_EQ(cube.blendParts.size(), 2u);
+  EXPECT_EQ(cube.blendParts[0].kind, BsdfKind::Diffuse);
+  EXPECT_EQ(cube.blendParts[1].kind, BsdfKind::Conductor);
+  EXPECT_TRUE(cube.blendParts[0].twoSided && cube.blendParts[1].twoSided);
+  const SurfaceColors c = s.surfaceColors(s.mesh.material[0], 0.5f, 0.5f);
+  EXPECT_FLOAT_EQ(c.blendWeight, 0.25f);
+  EXPECT_FLOAT_EQ(c.parts[0].reflectance.z, 0.3f);
+  const Material& sphere = s.materials[size_t(s.spheres.material[0])];
+  EXPECT_EQ(sphere.blendParts[0].kind, BsdfKind::Dielectric);  // the nested blend's first part
+  EXPECT_GE(sphere.blendWeight.texture, 0);
+  ASSERT_EQ(s.warnings.messages.size(), 1u);
+  EXPECT_NE(s.warnings.messages[0].find("blendbsdf inside a blendbsdf"), std::string::npos);
+  EXPECT_THROW(loadScene(dir.write("t.xml", R"(<scene version="3.0.0"><shape type="cube">
+    <bsdf type="blendbsdf"><bsdf type="diffuse"/></bsdf></shape></scene>)")), InputError);
+  EXPECT_THROW(loadScene(dir.write("u.xml", R"(<scene version="3.0.0"><shape type="cube">
+    <bsdf type="blendbsdf"><float name="weight" value="1.5"/><bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf>
+    </shape></scene>)")), InputError);
+}
+
 TEST(Loader, ShapesAndFlipNormals) {
   TempDir dir;
   std::string xml = R"(<scene version="3.0.0">
