@@ -52,5 +52,9 @@ float diffuseFresnelReflectance(float eta);
 float microfacetD(MicrofacetKind kind, float alpha, Vec3 m);
 float microfacetG1(MicrofacetKind kind, float alpha, Vec3 v, Vec3 m);
 Vec3 microfacetSampleNormal(MicrofacetKind kind, float alpha, float u1, float u2);
+// Anisotropic: roughness ax along the local x axis (the shading frame's s: dp/du), ay along y.
+float microfacetD(MicrofacetKind kind, float ax, float ay, Vec3 m);
+float microfacetG1(MicrofacetKind kind, float ax, float ay, Vec3 v, Vec3 m);
+Vec3 microfacetSampleNormal(MicrofacetKind kind, float ax, float ay, float u1, float u2);
 
 }  // namespace erpt

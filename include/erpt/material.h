@@ -12,7 +12,7 @@ namespace erpt {
 enum class BsdfKind { Diffuse, Conductor, RoughConductor, Dielectric, ThinDielectric, Plastic, RoughPlastic, RoughDielectric,
                       Phong, Blend };
 enum class MicrofacetKind { Beckmann, GGX };
-// A wrapper that perturbs the shading normal at every hit (shading_maps.cpp): `normalmap`
+// A wrapper that perturbs the shading normal at every hit (shading_frames.cpp): `normalmap`
 // (a tangent-space normal texture, Mitsuba 3) or `bumpmap` (a height texture, both dialects).
 enum class ShadingMap { None, Normal, Bump };
 
@@ -28,7 +28,8 @@ struct Material {
   Color eta{0.0f}, k{1.0f};                       // conductor (default: a perfect mirror)
   float intIOR = 1.5046f, extIOR = 1.000277f;     // dielectric / plastic (Mitsuba's defaults)
   MicrofacetKind distribution = MicrofacetKind::Beckmann;
-  float alpha = 0.1f;
+  float alpha = 0.1f;    // microfacet roughness; anisotropic: along dp/du (Mitsuba's alpha_u)
+  float alphaV = -1;     // anisotropic: the roughness along dp/dv; < 0: isotropic (alpha)
   float exponent = 30;  // phong: the specular lobe's exponent
   bool nonlinear = false;  // plastic: Mitsuba's `nonlinear` internal scattering model
   // Wrapped in `mask`: a cut-out. Rays pass through where the opacity (its channels' mean) is
@@ -49,6 +50,14 @@ struct Material {
   ColorParam blendWeight{Color(0.5f)};
 
   float relativeIOR() const { return intIOR / extIOR; }
+  float roughnessV() const { return alphaV > 0 ? alphaV : alpha; }
+  // surfaceAt adjusts the shading frame at its hits: a map, or a frame along dp/du.
+  bool adjustsShadingFrame() const { return shadingMap != ShadingMap::None || anisotropic(); }
+  // The BSDF depends on the azimuth around the normal: its shading frame must follow dp/du.
+  bool anisotropic() const {
+    if (kind == BsdfKind::Blend) return blendParts[0].anisotropic() || blendParts[1].anisotropic();
+    return alphaV > 0 && alphaV != alpha;
+  }
   bool isPureSpecular() const {
     if (kind == BsdfKind::Blend) return blendParts[0].isPureSpecular() && blendParts[1].isPureSpecular();
     return kind == BsdfKind::Conductor || kind == BsdfKind::Dielectric || kind == BsdfKind::ThinDielectric;

@@ -60,6 +60,8 @@ struct Frame {
     s = {1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x};
     t = {b, sign + n.y * n.y * a, -n.y};
   }
+  // The frame around `normal` whose s is `tangent` (unit, orthogonal to the normal).
+  Frame(Vec3 normal, Vec3 tangent) : s(tangent), t(cross(normal, tangent)), n(normal) {}
   Vec3 toLocal(Vec3 v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
   Vec3 toWorld(Vec3 v) const { return s * v.x + t * v.y + n * v.z; }
 };

@@ -137,9 +137,10 @@ struct Scene {
   // sampling picks points by area).
   bool opaqueAt(uint32_t triangle, float b1, float b2) const;
   bool hasMasks() const;
-  // Some material perturbs shading normals (normalmap / bumpmap); set by finalize, read by
-  // surfaceAt so scenes without maps pay nothing.
-  bool hasShadingMaps = false;
+  // Some material perturbs shading normals (normalmap / bumpmap) or needs its shading frame
+  // along dp/du (anisotropic roughness); set when the scene loads, read by surfaceAt so scenes
+  // without either pay nothing.
+  bool adjustsShadingFrames = false;
 
   // Resolves the (possibly textured) colours of a material at texture coordinates (u, v).
   SurfaceColors surfaceColors(int material, float u, float v) const;

@@ -89,17 +89,17 @@ inline SurfacePoint sphereSurfaceAt(const SphereSet& s, uint32_t i, uint32_t pri
 // The derivatives dp/du and dp/dv of triangle `tri`'s position with respect to its texture
 // coordinates; false when its uvs are degenerate (then any tangents of the normal serve).
 bool triangleUvDerivatives(const TriangleSoup& m, uint32_t tri, Vec3& dpdu, Vec3& dpdv);
-// Normal and bump mapping (shading_maps.cpp): replaces the shading frame of a triangle hit by
-// the one its material's map gives.
-void applyShadingMap(const Scene& scene, SurfacePoint& sp);
+// Normal and bump mapping, and frames along dp/du (shading_frames.cpp): replaces the shading
+// frame of a triangle hit by the one its material asks for.
+void adjustShadingFrame(const Scene& scene, SurfacePoint& sp);
 
-// The surface point a hit (primitive, u, v) names. (Spheres whose material has a shading map
-// are tessellated when the scene loads.)
+// The surface point a hit (primitive, u, v) names. (Spheres whose material adjusts its
+// shading frame are tessellated when the scene loads.)
 inline SurfacePoint surfaceAt(const Scene& scene, uint32_t primitive, float u, float v) {
   if (scene.isSphere(primitive)) return sphereSurfaceAt(scene.spheres, scene.sphereOf(primitive), primitive, u, v);
   SurfacePoint sp = triangleSurfaceAt(scene.mesh, primitive, u, v);
-  if (scene.hasShadingMaps && scene.materials[size_t(sp.material)].shadingMap != ShadingMap::None)
-    applyShadingMap(scene, sp);
+  if (scene.adjustsShadingFrames && scene.materials[size_t(sp.material)].adjustsShadingFrame())
+    adjustShadingFrame(scene, sp);
   return sp;
 }
 

@@ -9,6 +9,12 @@ namespace erpt {
 
 namespace {
 
+// Smith's shadowing-masking for the pair (wi, wo) about microfacet normal h.
+float smithG(const Material& m, Vec3 wi, Vec3 wo, Vec3 h) {
+  return microfacetG1(m.distribution, m.alpha, m.roughnessV(), wi, h) *
+         microfacetG1(m.distribution, m.alpha, m.roughnessV(), wo, h);
+}
+
 bool isTransmissive(BsdfKind k) {
   return k == BsdfKind::Dielectric || k == BsdfKind::ThinDielectric || k == BsdfKind::RoughDielectric;
 }
@@ -57,9 +63,9 @@ Color plasticDiffuse(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo
 // Microfacet reflection lobe, f * cos(wo), with Fresnel `fres` at the half vector.
 Color microfacetReflection(const Material& m, Vec3 wi, Vec3 wo, Color tint, bool conductor) {
   Vec3 h = normalize(wi + wo);
-  float d = microfacetD(m.distribution, m.alpha, h);
+  float d = microfacetD(m.distribution, m.alpha, m.roughnessV(), h);
   if (d == 0) return Color(0.0f);
-  float g = microfacetG1(m.distribution, m.alpha, wi, h) * microfacetG1(m.distribution, m.alpha, wo, h);
+  float g = smithG(m, wi, wo, h);
   float cosIH = dot(wi, h);
   Color f = conductor ? fresnelConductor(cosIH, m.eta, m.k) : Color(fresnelDielectric(cosIH, m.relativeIOR()));
   return tint * f * (d * g / (4.0f * wi.z));
@@ -69,7 +75,7 @@ float microfacetReflectionPdf(const Material& m, Vec3 wi, Vec3 wo) {
   Vec3 h = normalize(wi + wo);
   float dotOH = dot(wo, h);
   if (dotOH <= 0) return 0.0f;
-  return microfacetD(m.distribution, m.alpha, h) * h.z / (4.0f * dotOH);
+  return microfacetD(m.distribution, m.alpha, m.roughnessV(), h) * h.z / (4.0f * dotOH);
 }
 
 // Mitsuba 0.6's modified Phong: a diffuse lobe plus (n + 2) / (2 pi) cos^n(alpha), alpha the
@@ -156,9 +162,9 @@ Color evalRoughDielectric(const Material& m, const SurfaceColors& c, Vec3 wi, Ve
   Vec3 h;
   float etaWi;
   if (!roughDielectricHalfVector(m, wi, wo, h, etaWi)) return Color(0.0f);
-  const float d = microfacetD(m.distribution, m.alpha, h);
+  const float d = microfacetD(m.distribution, m.alpha, m.roughnessV(), h);
   if (d == 0) return Color(0.0f);
-  const float g = microfacetG1(m.distribution, m.alpha, wi, h) * microfacetG1(m.distribution, m.alpha, wo, h);
+  const float g = smithG(m, wi, wo, h);
   const float cosIH = dot(wi, h), cosOH = dot(wo, h);
   const float f = fresnelDielectric(cosIH, m.relativeIOR());
   if (wi.z * wo.z > 0) return c.specularReflectance * (f * d * g / (4.0f * std::abs(wi.z)));
@@ -177,7 +183,7 @@ float pdfRoughDielectric(const Material& m, Vec3 wi, Vec3 wo) {
   if (!roughDielectricHalfVector(m, wi, wo, h, etaWi)) return 0.0f;
   const float cosIH = dot(wi, h), cosOH = dot(wo, h);
   const float f = fresnelDielectric(cosIH, m.relativeIOR());
-  const float pdfH = microfacetD(m.distribution, m.alpha, h) * h.z;
+  const float pdfH = microfacetD(m.distribution, m.alpha, m.roughnessV(), h) * h.z;
   if (wi.z * wo.z > 0) return pdfH * f / (4.0f * std::abs(cosOH));
   const float denom = cosIH + etaWi * cosOH;
   return pdfH * (1 - f) * etaWi * etaWi * std::abs(cosOH) / (denom * denom);
@@ -185,7 +191,7 @@ float pdfRoughDielectric(const Material& m, Vec3 wi, Vec3 wo) {
 
 bool sampleRoughDielectric(const Material& m, const SurfaceColors& c, Vec3 wi, float u1, float u2, float u3,
                            BsdfSample& s) {
-  const Vec3 h = microfacetSampleNormal(m.distribution, m.alpha, u2, u3);
+  const Vec3 h = microfacetSampleNormal(m.distribution, m.alpha, m.roughnessV(), u2, u3);
   float cosT;
   const float cosIH = dot(wi, h);
   // A microfacet that faces away from wi's side is not seen from there (Smith G1 = 0): that
@@ -312,7 +318,7 @@ bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wiWorldSide, flo
       s.wo = flipZ(s.wo, flip);
       return true;
     case BsdfKind::RoughConductor:
-      s.wo = reflect(wi, microfacetSampleNormal(m.distribution, m.alpha, u2, u3));
+      s.wo = reflect(wi, microfacetSampleNormal(m.distribution, m.alpha, m.roughnessV(), u2, u3));
       break;
     case BsdfKind::Plastic: {
       float fi = fresnelDielectric(wi.z, m.relativeIOR());
@@ -329,7 +335,7 @@ bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wiWorldSide, flo
     }
     case BsdfKind::RoughPlastic: {
       float ps = plasticSpecularProbability(m, 1 - coatTransmittance(m, wi.z));
-      s.wo = u1 < ps ? reflect(wi, microfacetSampleNormal(m.distribution, m.alpha, u2, u3))
+      s.wo = u1 < ps ? reflect(wi, microfacetSampleNormal(m.distribution, m.alpha, m.roughnessV(), u2, u3))
                      : squareToCosineHemisphere(u2, u3);
       break;
     }
@@ -440,7 +446,7 @@ float roughCoatAlbedo(const Material& m, float cosTheta) {
   double sum = 0;
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b) {
-      Vec3 h = microfacetSampleNormal(m.distribution, m.alpha, (a + 0.5f) / n, (b + 0.5f) / n);
+      Vec3 h = microfacetSampleNormal(m.distribution, m.alpha, m.roughnessV(), (a + 0.5f) / n, (b + 0.5f) / n);
       Vec3 wo = reflect(wi, h);
       if (wo.z <= 0) continue;
       float pdf = microfacetReflectionPdf(m, wi, wo);

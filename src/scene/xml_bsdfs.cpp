@@ -17,15 +17,26 @@ MicrofacetKind readDistribution(const Properties& props, Warnings& warnings) {
   return MicrofacetKind::Beckmann;
 }
 
-float readAlpha(const Properties& props, Warnings& warnings) {
-  float alpha = props.getFloat("alpha", 0.1f);
-  if (props.has("alpha_u") || props.has("alpha_v")) {
-    float au = props.getFloat("alpha_u", alpha), av = props.getFloat("alpha_v", alpha);
-    warnings.add(props.where(), "anisotropic roughness is not supported; using alpha = (alpha_u + alpha_v) / 2");
-    alpha = 0.5f * (au + av);
+// The roughness of `m` from alpha, or alpha_u and alpha_v (anisotropic: roughconductor and
+// roughdielectric, as in Mitsuba; roughplastic is isotropic there too: it gets their mean).
+void readAlpha(const Properties& props, Warnings& warnings, Material& m) {
+  auto checked = [&](const char* name, float a) {
+    if (!(a > 0 && a <= 4)) throw InputError(props.find(name) ? props.find(name)->where : props.where(),
+                                             std::string(name) + " must be in (0, 4]");
+    return std::max(a, 1e-4f);
+  };
+  m.alpha = checked("alpha", props.getFloat("alpha", 0.1f));
+  m.alphaV = -1;
+  if (!props.has("alpha_u") && !props.has("alpha_v")) return;
+  const float au = checked("alpha_u", props.getFloat("alpha_u", m.alpha));
+  const float av = checked("alpha_v", props.getFloat("alpha_v", m.alpha));
+  if (m.kind == BsdfKind::RoughPlastic) {
+    warnings.add(props.where(), "roughplastic is isotropic; using alpha = (alpha_u + alpha_v) / 2");
+    m.alpha = 0.5f * (au + av);
+    return;
   }
-  if (!(alpha > 0 && alpha <= 4)) throw InputError(props.where(), "alpha must be in (0, 4]");
-  return std::max(alpha, 1e-4f);
+  m.alpha = au;
+  m.alphaV = av;
 }
 
 }  // namespace
@@ -124,7 +135,7 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     m.k = props.getColor("k", m.k);
     m.specularReflectance = props.getColorParam("specular_reflectance", Color(1.0f), scene_);
     if (m.kind == BsdfKind::RoughConductor) {
-      m.alpha = readAlpha(props, w);
+      readAlpha(props, w, m);
       m.distribution = readDistribution(props, w);
     }
   } else if (type == "dielectric" || type == "thindielectric" || type == "roughdielectric") {
@@ -132,7 +143,7 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
              : type == "roughdielectric" ? BsdfKind::RoughDielectric
                                          : BsdfKind::Dielectric;
     if (m.kind == BsdfKind::RoughDielectric) {
-      m.alpha = readAlpha(props, w);
+      readAlpha(props, w, m);
       m.distribution = readDistribution(props, w);
     }
     m.intIOR = props.getIOR("int_ior", 1.5046f);
@@ -147,7 +158,7 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     m.specularReflectance = props.getColorParam("specular_reflectance", Color(1.0f), scene_);
     m.nonlinear = props.getBool("nonlinear", false);
     if (m.kind == BsdfKind::RoughPlastic) {
-      m.alpha = readAlpha(props, w);
+      readAlpha(props, w, m);
       m.distribution = readDistribution(props, w);
     }
   } else if (type == "phong") {

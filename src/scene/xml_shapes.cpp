@@ -109,9 +109,10 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const 
     scene_.warnings.add(where, "a masked sphere is tessellated (cut-outs apply to triangles)");
     exactSphere = false;
   }
-  if (exactSphere && scene_.materials[size_t(material)].shadingMap != ShadingMap::None) {
-    // The maps read the triangles' uv derivatives.
-    scene_.warnings.add(where, "a normal- or bump-mapped sphere is tessellated (the maps apply to triangles)");
+  if (exactSphere && scene_.materials[size_t(material)].adjustsShadingFrame()) {
+    // The maps and anisotropic roughness read the triangles' uv derivatives.
+    scene_.warnings.add(where, "a sphere with a normal or bump map or anisotropic roughness is tessellated (they "
+                               "follow the triangles' uv derivatives)");
     exactSphere = false;
   }
 
@@ -325,7 +326,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
   scene.file = path;
   xml::SceneBuilder builder(scene, options);
   builder.loadFile(path, 0);
-  for (const Material& m : scene.materials) scene.hasShadingMaps |= m.shadingMap != ShadingMap::None;
+  for (const Material& m : scene.materials) scene.adjustsShadingFrames |= m.adjustsShadingFrame();
   if (scene.primitiveCount() == 0 && scene.emitters.empty())
     throw InputError({path, 0}, "the scene has no geometry and no emitters");
   return scene;

@@ -142,13 +142,22 @@ TEST(StatisticalErpt, BlendBsdfMatchesPathTracerBlockByBlock) {
   expectErptMatchesPathTracerBlockByBlock(scene, 16, everyPathByErpt(200), 16000);
 }
 
+// Anisotropic roughness (a brushed floor): the chains' BSDF values need the shading frame
+// the seeds were shaded in, its tangent along dp/du, which ERPT's vertices store.
+TEST(StatisticalErpt, AnisotropicRoughConductorMatchesPathTracerBlockByBlock) {
+  const Scene scene = loadScene(test::sourceDir() + "/tests/data/brushed-metal.xml");
+  ASSERT_TRUE(scene.adjustsShadingFrames);
+  ASSERT_TRUE(scene.warnings.messages.empty()) << scene.warnings.messages.front();
+  expectErptMatchesPathTracerBlockByBlock(scene, 16, everyPathByErpt(200), 17000);
+}
+
 // Normal and bump maps: the shading normals ERPT's vertices store are the perturbed ones, so
 // the chains' BSDF values (and the lens perturbation's connections onto a mapped floor and
 // wall, next to the glass sphere's caustic) must match what the path tracer shaded with.
 TEST(StatisticalErpt, NormalAndBumpMapsMatchPathTracerBlockByBlock) {
   test::TempDir dir;
   const Scene scene = loadScene(test::writeMappedBoxScene(dir));
-  ASSERT_TRUE(scene.hasShadingMaps);
+  ASSERT_TRUE(scene.adjustsShadingFrames);
   ASSERT_TRUE(scene.warnings.messages.empty()) << scene.warnings.messages.front();
   expectErptMatchesPathTracerBlockByBlock(scene, 16, everyPathByErpt(200), 15000);
 }

@@ -130,6 +130,13 @@ Material phong(float exponent, Color diffuseReflectance = Color(0.5f), Color spe
   return finalized(m);  // the lobes' sampling weights
 }
 
+// Anisotropic roughness: alpha along the local x axis (dp/du), alphaV along y.
+Material anisotropicConductor(MicrofacetKind dist, float alphaU, float alphaV) {
+  Material m = roughConductor(dist, alphaU);
+  m.alphaV = alphaV;
+  return finalized(m);
+}
+
 // blendbsdf: (1 - weight) a + weight b.
 Material blend(const Material& a, const Material& b, float weight) {
   Material m;
@@ -228,6 +235,14 @@ std::vector<SamplingCase> samplingCases() {
         cases.push_back({"Phong_n" + numberTag(exponent) + "_wi" + numberTag(theta), phong(exponent), direction(theta),
                          exponent > 100 ? 96 : 48, exponent > 100 ? 24 : 8});
 
+  // Anisotropic rough conductors (alpha_u along x, alpha_v along y), seen from azimuths along,
+  // across and between the axes.
+  for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX})
+    for (auto [theta, phi] : {std::pair{0.0f, 0.0f}, {40.0f, 0.0f}, {40.0f, 90.0f}, {70.0f, 35.0f}})
+      cases.push_back({std::string("AnisotropicConductor_") + distributionName(dist) + "_a0p08x0p4_wi" + numberTag(theta) +
+                           "_phi" + numberTag(phi),
+                       anisotropicConductor(dist, 0.08f, 0.4f), direction(theta, phi), 96});
+
   // blendbsdf: the mixture's density over both parts' smooth lobes; a Dirac part (the mirror)
   // is missing mass in proportion to its weight.
   for (float theta : {30.0f, 75.0f}) {
@@ -325,6 +340,8 @@ std::vector<NamedMaterial> nonDeltaMaterials() {
                                    {"twosided roughplastic (back)",
                                     roughPlastic(MicrofacetKind::GGX, 0.3f, Color(0.5f), false, true), true},
                                    {"blend diffuse + roughconductor", blend(diffuse(), roughConductor(MicrofacetKind::GGX, 0.3f), 0.4f)},
+                                   {"anisotropic GGX 0.1 x 0.5", anisotropicConductor(MicrofacetKind::GGX, 0.1f, 0.5f)},
+                                   {"anisotropic Beckmann 0.4 x 0.15", anisotropicConductor(MicrofacetKind::Beckmann, 0.4f, 0.15f)},
                                    {"blend plastic + phong", blend(plastic(), phong(40.0f), 0.7f)}};
   for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
     for (float alpha : {0.1f, 0.3f, 0.7f}) {
@@ -463,6 +480,11 @@ TEST(BsdfEnergy, WhiteMaterialsReflectAtMostAllEnergy) {
     for (float alpha : {0.1f, 0.3f, 0.7f})
       ms.push_back({std::string("roughconductor ") + distributionName(dist) + " alpha " + numberTag(alpha),
                     roughConductor(dist, alpha, Color(0.0f), Color(1.0f))});
+  for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
+    Material m = roughConductor(dist, 0.05f, Color(0.0f), Color(1.0f));
+    m.alphaV = 0.6f;
+    ms.push_back({std::string("anisotropic roughconductor ") + distributionName(dist) + " 0.05 x 0.6", m});
+  }
   expectAlbedoAtMostOne(ms);
 }
 
@@ -847,6 +869,54 @@ TEST(Microfacet, DistributionsAreNormalizedInProjectedArea) {
         sum += microfacetD(dist, alpha, m) * std::cos(t) * std::sin(t) * dTheta;
       }
       EXPECT_NEAR(2 * kPiDouble * sum, 1.0, 2e-3) << distributionName(dist) << " alpha " << alpha;
+    }
+  }
+}
+
+// The midpoint sum of f(m) dm over the upper hemisphere, on a grid of theta x phi cells.
+template <class F>
+double integrateHemisphere(int nTheta, int nPhi, F&& f) {
+  double sum = 0;
+  const double dTheta = 0.5 * kPiDouble / nTheta, dPhi = 2 * kPiDouble / nPhi;
+  for (int i = 0; i < nTheta; ++i) {
+    const double t = (i + 0.5) * dTheta;
+    for (int j = 0; j < nPhi; ++j) {
+      const double p = (j + 0.5) * dPhi;
+      const Vec3 m(float(std::sin(t) * std::cos(p)), float(std::sin(t) * std::sin(p)), float(std::cos(t)));
+      sum += f(m) * std::sin(t) * dTheta * dPhi;
+    }
+  }
+  return sum;
+}
+
+// Anisotropic D over the whole hemisphere (theta and phi): projected area 1 as well; with
+// alpha_u = alpha_v it is the isotropic D; swapping the axes rotates it by 90 degrees.
+TEST(Microfacet, AnisotropicDistributionsAreNormalizedAndRotateWithTheirAxes) {
+  const int nTheta = 4000, nPhi = 512;
+  for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
+    for (auto [ax, ay] : {std::pair{0.1f, 0.4f}, {0.6f, 0.2f}}) {
+      const double sum = integrateHemisphere(nTheta, nPhi, [&](Vec3 m) { return microfacetD(dist, ax, ay, m) * m.z; });
+      EXPECT_NEAR(sum, 1.0, 3e-3) << distributionName(dist) << " " << ax << " x " << ay;
+      const Vec3 m = normalize(Vec3(0.3f, 0.2f, 0.9f)), rotated(-m.y, m.x, m.z);
+      EXPECT_NEAR(microfacetD(dist, ax, ay, m) / microfacetD(dist, ay, ax, rotated), 1.0, 1e-5);
+      EXPECT_NEAR(microfacetD(dist, ax, ax, m) / microfacetD(dist, ax, m), 1.0, 1e-5);
+    }
+  }
+}
+
+// Smith G1 with the projected roughness: the visible projected area is cos(theta_v) for views
+// along, across and between the axes.
+TEST(Microfacet, AnisotropicSmithShadowingConservesVisibleProjectedArea) {
+  const int nTheta = 1500, nPhi = 384;
+  for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
+    for (float phiV : {0.0f, 90.0f, 30.0f}) {
+      const Vec3 v = direction(60.0f, phiV);
+      const double sum = integrateHemisphere(nTheta, nPhi, [&](Vec3 m) {
+        const double vm = dot(v, m);
+        return vm <= 0 ? 0.0 : microfacetG1(dist, 0.15f, 0.6f, v, m) * vm * microfacetD(dist, 0.15f, 0.6f, m);
+      });
+      const double tolerance = dist == MicrofacetKind::GGX ? 2e-3 : 6e-3;
+      EXPECT_NEAR(sum / v.z, 1.0, tolerance) << distributionName(dist) << " phi_v " << phiV;
     }
   }
 }

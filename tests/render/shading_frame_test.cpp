@@ -1,5 +1,6 @@
-// normalmap and bumpmap: the perturbed shading normal against closed forms, the same shading
-// in the path tracer and direct lighting, and the loader's handling of both dialects.
+// Shading frames that surfaceAt adjusts: normalmap and bumpmap (the perturbed shading normal
+// against closed forms, the same shading in the path tracer and direct lighting, both
+// dialects) and anisotropic roughness (the frame's tangent along dp/du).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -36,7 +37,7 @@ void expectEveryPixel(const Scene& scene, float expected) {
   }
 }
 
-TEST(ShadingMap, RectangleUvDerivativesAreItsEdges) {
+TEST(ShadingFrame, RectangleUvDerivativesAreItsEdges) {
   test::TempDir dir;
   const Scene scene = loadScene(test::writeMappedPlaneScene(dir, "%s", 0.5f, 1.0f));
   Vec3 dpdu, dpdv;
@@ -44,15 +45,15 @@ TEST(ShadingMap, RectangleUvDerivativesAreItsEdges) {
   EXPECT_NEAR(dpdu.x, 2, 1e-6);  // x = 2u - 1, y = 2v - 1
   EXPECT_NEAR(length(dpdu - Vec3(2, 0, 0)), 0, 1e-6);
   EXPECT_NEAR(length(dpdv - Vec3(0, 2, 0)), 0, 1e-6);
-  EXPECT_FALSE(scene.hasShadingMaps);
+  EXPECT_FALSE(scene.adjustsShadingFrames);
 }
 
-TEST(ShadingMap, NormalMapTiltsTheShadingNormalTowardsU) {
+TEST(ShadingFrame, NormalMapTiltsTheShadingNormalTowardsU) {
   test::TempDir dir;
   test::writeTiltNormalMap(dir, 40);
   const Scene scene = loadScene(test::writeMappedPlaneScene(dir, R"(<bsdf type="normalmap">
       <texture type="bitmap" name="normalmap"><string name="filename" value="normal.exr"/></texture>%s</bsdf>)", 0.6f, 2.0f));
-  ASSERT_TRUE(scene.hasShadingMaps);
+  ASSERT_TRUE(scene.adjustsShadingFrames);
   EXPECT_TRUE(scene.warnings.messages.empty()) << scene.warnings.messages.front();
   const SurfacePoint sp = pointOnPlane(scene);
   const float t = 40 * kPiF / 180;
@@ -61,7 +62,7 @@ TEST(ShadingMap, NormalMapTiltsTheShadingNormalTowardsU) {
   expectEveryPixel(scene, 0.6f / kPiF * 2.0f * std::cos(t));
 }
 
-TEST(ShadingMap, FlatMapsLeaveTheNormal) {
+TEST(ShadingFrame, FlatMapsLeaveTheNormal) {
   test::TempDir dir;
   test::writeTiltNormalMap(dir, 0);
   test::writeRampHeights(dir, 0);
@@ -75,7 +76,7 @@ TEST(ShadingMap, FlatMapsLeaveTheNormal) {
 
 // Heights h = k u: dp/du = (2, 0, 0) gains n k s (s: the bumpmap's scale), dp/dv = (0, 2, 0),
 // so the normal is (-k s, 0, 2) / |.|.
-TEST(ShadingMap, BumpRampTiltsTheNormalByItsSlope) {
+TEST(ShadingFrame, BumpRampTiltsTheNormalByItsSlope) {
   test::TempDir dir;
   test::writeRampHeights(dir, 1.5f);
   // Mitsuba 3: a named texture and `scale`.
@@ -93,7 +94,7 @@ TEST(ShadingMap, BumpRampTiltsTheNormalByItsSlope) {
   EXPECT_NEAR(length(pointOnPlane(old).shading.n - expected), 0, 1e-4);
 }
 
-TEST(ShadingMap, MappedSphereIsTessellatedAndBadInputIsAnError) {
+TEST(ShadingFrame, MappedSphereIsTessellatedAndBadInputIsAnError) {
   test::TempDir dir;
   test::writeTiltNormalMap(dir, 10);
   const Scene sphere = loadScene(dir.write("s.xml", R"(<scene version="3.0.0"><shape type="sphere">
@@ -119,6 +120,34 @@ TEST(ShadingMap, MappedSphereIsTessellatedAndBadInputIsAnError) {
               "needs a nested <bsdf>");
   expectError("c.xml", R"(<bsdf type="bumpmap"><texture type="scale"/><bsdf type="diffuse"/></bsdf>)",
               "needs a nested <texture>");
+}
+
+// alpha_u lies along dp/du: the shading frame's s follows the rectangle's u axis wherever the
+// shape is turned; alpha_u / alpha_v on roughplastic (isotropic, as in Mitsuba) give their mean.
+TEST(ShadingFrame, AnisotropicRoughnessFollowsTheUAxis) {
+  test::TempDir dir;
+  const Scene scene = loadScene(dir.write("a.xml", R"(<scene version="3.0.0">
+    <shape type="rectangle"><bsdf type="roughconductor"><float name="alpha_u" value="0.05"/>
+      <float name="alpha_v" value="0.3"/></bsdf></shape>
+    <shape type="rectangle"><transform name="to_world"><rotate z="1" angle="90"/><translate z="-1"/></transform>
+      <bsdf type="roughconductor"><float name="alpha_u" value="0.05"/><float name="alpha_v" value="0.3"/></bsdf></shape>
+    <shape type="rectangle"><transform name="to_world"><translate z="-2"/></transform>
+      <bsdf type="roughplastic"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.3"/></bsdf></shape>
+  </scene>)"));
+  ASSERT_TRUE(scene.adjustsShadingFrames);
+  const Material& brushed = scene.materials[size_t(scene.mesh.material[0])];
+  EXPECT_TRUE(brushed.anisotropic());
+  EXPECT_FLOAT_EQ(brushed.alpha, 0.05f);
+  EXPECT_FLOAT_EQ(brushed.roughnessV(), 0.3f);
+  EXPECT_NEAR(length(surfaceAt(scene, 0, 0.3f, 0.3f).shading.s - Vec3(1, 0, 0)), 0, 1e-6);
+  EXPECT_NEAR(length(surfaceAt(scene, 2, 0.3f, 0.3f).shading.s - Vec3(0, 1, 0)), 0, 1e-6);  // turned 90 degrees
+  const Material& plastic = scene.materials[size_t(scene.mesh.material[4])];
+  EXPECT_FALSE(plastic.anisotropic());
+  EXPECT_FLOAT_EQ(plastic.alpha, 0.2f);
+  ASSERT_EQ(scene.warnings.messages.size(), 1u);
+  EXPECT_NE(scene.warnings.messages[0].find("roughplastic is isotropic"), std::string::npos);
+  EXPECT_THROW(loadScene(dir.write("b.xml", R"(<scene version="3.0.0"><shape type="cube">
+    <bsdf type="roughconductor"><float name="alpha_v" value="-1"/></bsdf></shape></scene>)")), InputError);
 }
 
 }  // namespace

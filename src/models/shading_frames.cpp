@@ -1,7 +1,9 @@
-// Normal and bump mapping, as Mitsuba defines them. Both perturb only the shading frame of a
-// hit (the geometric normal, and so emission, ray offsets and the light sampler, stay), in
-// every integrator alike: the path tracer shades with it, and ERPT's path vertices store the
-// perturbed normal that surfaceAt gives, so chains evaluate the same BSDF the seeds saw.
+// Shading frames that surfaceAt adjusts: normal and bump mapping, as Mitsuba defines them,
+// and frames whose tangent s follows dp/du (anisotropic roughness: alpha_u lies along dp/du).
+// Only the shading frame changes (the geometric normal, and so emission, ray offsets and the
+// light sampler, stay), in every integrator alike: the path tracer shades with it, and ERPT's
+// path vertices store the frame's normal and tangent, so chains evaluate the same BSDF the
+// seeds saw.
 //  - normalmap (Mitsuba 3): the texture's RGB in [0, 1] is a normal 2 rgb - 1 in the tangent
 //    frame (s = dp/du made orthogonal to the shading normal n, t = n x s, n).
 //  - bumpmap (Mitsuba 0.6 and 3): the texture is a height h (its luminance, times `scale`);
@@ -52,12 +54,26 @@ Vec3 mappedNormal(const Scene& scene, const Material& m, const SurfacePoint& sp)
 
 }  // namespace
 
-void applyShadingMap(const Scene& scene, SurfacePoint& sp) {
-  const Vec3 mapped = mappedNormal(scene, scene.materials[size_t(sp.material)], sp);
-  const float len = length(mapped);
-  // A texel of (0.5, 0.5, 0.5), or a degenerate bump, gives no direction: keep the normal.
-  if (!(len > 1e-12f) || !std::isfinite(len)) return;
-  sp.shading = Frame(mapped / len);
+void adjustShadingFrame(const Scene& scene, SurfacePoint& sp) {
+  const Material& m = scene.materials[size_t(sp.material)];
+  Vec3 n = sp.shading.n;
+  if (m.shadingMap != ShadingMap::None) {
+    const Vec3 mapped = mappedNormal(scene, m, sp);
+    const float len = length(mapped);
+    // A texel of (0.5, 0.5, 0.5), or a degenerate bump, gives no direction: keep the normal.
+    if (len > 1e-12f && std::isfinite(len)) n = mapped / len;
+  }
+  // The tangent along dp/du, where the triangle's uvs give one; else the frame n alone gives.
+  Vec3 dpdu, dpdv;
+  if (triangleUvDerivatives(scene.mesh, sp.primitive, dpdu, dpdv)) {
+    const Vec3 s = dpdu - n * dot(n, dpdu);
+    const float len = length(s);
+    if (len > 1e-12f * length(dpdu) && std::isfinite(len)) {
+      sp.shading = Frame(n, s / len);
+      return;
+    }
+  }
+  sp.shading = Frame(n);
 }
 
 }  // namespace erpt
