@@ -63,6 +63,16 @@ struct Frame {
   // The frame around `normal` whose s is `tangent` (unit, orthogonal to the normal).
   Frame(Vec3 normal, Vec3 tangent) : s(tangent), t(cross(normal, tangent)), n(normal) {}
   Vec3 toLocal(Vec3 v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
+  // A frame around `normal` stored as one angle: its s turned by `angle` about the normal from
+  // Frame(normal).s (tangentAngle gives the angle of a frame's own s).
+  static Frame turned(Vec3 normal, float angle) {
+    const Frame f(normal);
+    return Frame(normal, f.s * std::cos(angle) + f.t * std::sin(angle));
+  }
+  float tangentAngle() const {
+    const Frame f(n);
+    return std::atan2(dot(s, f.t), dot(s, f.s));
+  }
   Vec3 toWorld(Vec3 v) const { return s * v.x + t * v.y + n * v.z; }
 };
 

@@ -76,7 +76,7 @@
 #define ERPT_PATH_VERTEX_FIELDS(F, V, C)                                                            \
   V(p, "position")                                                                                  \
   V(ns, "shading normal")                                                                           \
-  V(ts, "shading tangent (the frame's s; anisotropic BSDFs: dp/du made orthogonal to ns)")         \
+  F(float, tangentAngle, 0, "anisotropic BSDFs: their frame's s, as an angle about ns from Frame(ns).s") \
   V(ng, "geometric normal (unit, from the triangle winding)")                                       \
   F(int32_t, material, -1, "material index (-1 for eye and environment vertices)")                  \
   F(float, u, {}, "texture coordinate u")                                                           \

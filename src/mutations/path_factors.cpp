@@ -19,7 +19,7 @@ LocalBsdf bsdfAt(const MeasureContext& c, const PathVertex& v) {
   const Material& m = c.scene.materials[size_t(v.material)];
   // An anisotropic BSDF needs the frame the path was shaded in (its s along dp/du); any frame
   // around the normal serves an isotropic one.
-  return {m, c.scene.surfaceColors(v.material, v.u, v.v), m.anisotropic() ? Frame(v.ns, v.ts) : Frame(v.ns)};
+  return {m, c.scene.surfaceColors(v.material, v.u, v.v), m.anisotropic() ? Frame::turned(v.ns, v.tangentAngle) : Frame(v.ns)};
 }
 
 }  // namespace

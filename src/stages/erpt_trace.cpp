@@ -76,7 +76,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
     const Material& m = scene.materials[size_t(sp.material)];
     z.p = sp.position;
     z.ns = sp.shading.n;
-    z.ts = sp.shading.s;
+    z.tangentAngle = m.anisotropic() ? sp.shading.tangentAngle() : 0.0f;
     z.ng = sp.geometricNormal;
     z.material = sp.material;
     z.u = sp.u;

@@ -60,7 +60,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
       VertexQueue::Row v;  // the whole row: pdfForward 0 and the parent link are written too
       v.p = sp.position;
       v.ns = sp.shading.n;
-      v.ts = sp.shading.s;
+      v.tangentAngle = m.anisotropic() ? sp.shading.tangentAngle() : 0.0f;
       v.ng = sp.geometricNormal;
       v.material = sp.material;
       v.u = sp.u;
