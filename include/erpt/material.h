@@ -10,7 +10,9 @@
 namespace erpt {
 
 enum class BsdfKind { Diffuse, Conductor, RoughConductor, Dielectric, ThinDielectric, Plastic, RoughPlastic, RoughDielectric,
-                      Phong, Blend };
+                      Phong, Blend, Ward };
+// Ward's normalisation variants, as Mitsuba 0.6 names them (`variant`).
+enum class WardVariant { Ward, WardDuer, Balanced };
 enum class MicrofacetKind { Beckmann, GGX };
 // A wrapper that perturbs the shading normal at every hit (shading_frames.cpp): `normalmap`
 // (a tangent-space normal texture, Mitsuba 3) or `bumpmap` (a height texture, both dialects).
@@ -31,6 +33,7 @@ struct Material {
   float alpha = 0.1f;    // microfacet roughness; anisotropic: along dp/du (Mitsuba's alpha_u)
   float alphaV = -1;     // anisotropic: the roughness along dp/dv; < 0: isotropic (alpha)
   float exponent = 30;  // phong: the specular lobe's exponent
+  WardVariant wardVariant = WardVariant::Balanced;  // ward (its roughness: alpha, alphaV)
   bool nonlinear = false;  // plastic: Mitsuba's `nonlinear` internal scattering model
   // Wrapped in `mask`: a cut-out. Rays pass through where the opacity (its channels' mean) is
   // below 0.5, in every integrator (an Embree intersection filter); Mitsuba blends partial
@@ -56,7 +59,8 @@ struct Material {
   // The BSDF depends on the azimuth around the normal: its shading frame must follow dp/du.
   bool anisotropic() const {
     if (kind == BsdfKind::Blend) return blendParts[0].anisotropic() || blendParts[1].anisotropic();
-    return alphaV > 0 && alphaV != alpha;
+    return (kind == BsdfKind::RoughConductor || kind == BsdfKind::RoughDielectric || kind == BsdfKind::Ward) &&
+           alphaV > 0 && alphaV != alpha;
   }
   bool isPureSpecular() const {
     if (kind == BsdfKind::Blend) return blendParts[0].isPureSpecular() && blendParts[1].isPureSpecular();

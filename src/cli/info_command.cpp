@@ -24,6 +24,7 @@ const char* kindName(BsdfKind k) {
     case BsdfKind::ThinDielectric: return "thindielectric";
     case BsdfKind::Plastic: return "plastic";
     case BsdfKind::Blend: return "blendbsdf";
+    case BsdfKind::Ward: return "ward";
     case BsdfKind::RoughPlastic: return "roughplastic";
     case BsdfKind::RoughDielectric: return "roughdielectric";
     case BsdfKind::Phong: return "phong";

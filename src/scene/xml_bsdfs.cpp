@@ -161,6 +161,16 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
       readAlpha(props, w, m);
       m.distribution = readDistribution(props, w);
     }
+  } else if (type == "ward") {
+    m.kind = BsdfKind::Ward;
+    const std::string variant = props.getString("variant", "balanced");
+    if (variant == "ward") m.wardVariant = WardVariant::Ward;
+    else if (variant == "ward-duer") m.wardVariant = WardVariant::WardDuer;
+    else if (variant == "balanced") m.wardVariant = WardVariant::Balanced;
+    else throw InputError(props.find("variant")->where, "unknown ward variant '" + variant + "' (ward, ward-duer, balanced)");
+    readAlpha(props, w, m);
+    m.reflectance = props.getColorParam("diffuse_reflectance", Color(0.5f), scene_);
+    m.specularReflectance = props.getColorParam("specular_reflectance", Color(0.2f), scene_);
   } else if (type == "phong") {
     m.kind = BsdfKind::Phong;
     m.exponent = props.getFloat("exponent", 30.0f);

@@ -143,8 +143,9 @@ TEST(StatisticalErpt, BlendBsdfMatchesPathTracerBlockByBlock) {
 }
 
 // Anisotropic roughness (a brushed floor): the chains' BSDF values need the shading frame
-// the seeds were shaded in, its tangent along dp/du, which ERPT's vertices store.
-TEST(StatisticalErpt, AnisotropicRoughConductorMatchesPathTracerBlockByBlock) {
+// the seeds were shaded in, its tangent along dp/du, which ERPT's vertices store. The sphere
+// is Ward's glossy model (non-specular vertices).
+TEST(StatisticalErpt, AnisotropicRoughConductorAndWardMatchPathTracerBlockByBlock) {
   const Scene scene = loadScene(test::sourceDir() + "/tests/data/brushed-metal.xml");
   ASSERT_TRUE(scene.adjustsShadingFrames);
   ASSERT_TRUE(scene.warnings.messages.empty()) << scene.warnings.messages.front();

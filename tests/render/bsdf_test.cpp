@@ -137,6 +137,22 @@ Material anisotropicConductor(MicrofacetKind dist, float alphaU, float alphaV) {
   return finalized(m);
 }
 
+// Mitsuba 0.6's Ward: diffuse 0.3 plus an (anisotropic) specular lobe of reflectance 0.5.
+Material ward(WardVariant variant, float alphaU, float alphaV) {
+  Material m;
+  m.kind = BsdfKind::Ward;
+  m.wardVariant = variant;
+  m.alpha = alphaU;
+  m.alphaV = alphaV;
+  m.reflectance.value = Color(0.3f);
+  m.specularReflectance.value = Color(0.5f);
+  return finalized(m);  // the lobes' sampling weights
+}
+
+const char* wardName(WardVariant v) {
+  return v == WardVariant::Ward ? "Ward" : v == WardVariant::WardDuer ? "WardDuer" : "Balanced";
+}
+
 // blendbsdf: (1 - weight) a + weight b.
 Material blend(const Material& a, const Material& b, float weight) {
   Material m;
@@ -243,6 +259,16 @@ std::vector<SamplingCase> samplingCases() {
                            "_phi" + numberTag(phi),
                        anisotropicConductor(dist, 0.08f, 0.4f), direction(theta, phi), 96});
 
+  // Ward: the specular lobe sampled by anisotropic Beckmann half vectors, the diffuse lobe by
+  // cosine; isotropic and anisotropic, each variant.
+  for (WardVariant v : {WardVariant::Ward, WardVariant::WardDuer, WardVariant::Balanced})
+    for (auto [theta, phi] : {std::pair{20.0f, 0.0f}, {65.0f, 50.0f}}) {
+      cases.push_back({std::string("Ward") + wardName(v) + "_a0p15x0p15_wi" + numberTag(theta) + "_phi" + numberTag(phi),
+                       ward(v, 0.15f, 0.15f), direction(theta, phi), 96});
+      cases.push_back({std::string("Ward") + wardName(v) + "_a0p08x0p3_wi" + numberTag(theta) + "_phi" + numberTag(phi),
+                       ward(v, 0.08f, 0.3f), direction(theta, phi), 96});
+    }
+
   // blendbsdf: the mixture's density over both parts' smooth lobes; a Dirac part (the mirror)
   // is missing mass in proportion to its weight.
   for (float theta : {30.0f, 75.0f}) {
@@ -341,6 +367,9 @@ std::vector<NamedMaterial> nonDeltaMaterials() {
                                     roughPlastic(MicrofacetKind::GGX, 0.3f, Color(0.5f), false, true), true},
                                    {"blend diffuse + roughconductor", blend(diffuse(), roughConductor(MicrofacetKind::GGX, 0.3f), 0.4f)},
                                    {"anisotropic GGX 0.1 x 0.5", anisotropicConductor(MicrofacetKind::GGX, 0.1f, 0.5f)},
+                                   {"ward", ward(WardVariant::Ward, 0.1f, 0.3f)},
+                                   {"ward-duer", ward(WardVariant::WardDuer, 0.2f, 0.2f)},
+                                   {"ward balanced", ward(WardVariant::Balanced, 0.3f, 0.1f)},
                                    {"anisotropic Beckmann 0.4 x 0.15", anisotropicConductor(MicrofacetKind::Beckmann, 0.4f, 0.15f)},
                                    {"blend plastic + phong", blend(plastic(), phong(40.0f), 0.7f)}};
   for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {

@@ -148,6 +148,19 @@ TEST(ShadingFrame, AnisotropicRoughnessFollowsTheUAxis) {
   EXPECT_NE(scene.warnings.messages[0].find("roughplastic is isotropic"), std::string::npos);
   EXPECT_THROW(loadScene(dir.write("b.xml", R"(<scene version="3.0.0"><shape type="cube">
     <bsdf type="roughconductor"><float name="alpha_v" value="-1"/></bsdf></shape></scene>)")), InputError);
+  // Mitsuba 0.6's ward: its camelCase roughness, variant and lobes; anisotropic like the above.
+  const Scene ward = loadScene(dir.write("w.xml", R"(<scene version="0.6.0"><shape type="rectangle">
+    <bsdf type="ward"><string name="variant" value="ward-duer"/><float name="alphaU" value="0.1"/>
+      <float name="alphaV" value="0.25"/><rgb name="diffuseReflectance" value="0.2"/></bsdf></shape></scene>)"));
+  const Material& w = ward.materials[size_t(ward.mesh.material[0])];
+  EXPECT_EQ(w.kind, BsdfKind::Ward);
+  EXPECT_EQ(w.wardVariant, WardVariant::WardDuer);
+  EXPECT_TRUE(w.anisotropic());
+  EXPECT_FLOAT_EQ(w.reflectance.value.x, 0.2f);
+  EXPECT_FLOAT_EQ(w.specularReflectance.value.x, 0.2f);  // Mitsuba's default
+  EXPECT_TRUE(ward.warnings.messages.empty()) << ward.warnings.messages.front();
+  EXPECT_THROW(loadScene(dir.write("v.xml", R"(<scene version="3.0.0"><shape type="cube">
+    <bsdf type="ward"><string name="variant" value="lafortune"/></bsdf></shape></scene>)")), InputError);
 }
 
 }  // namespace
