@@ -106,6 +106,9 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
         Material first = part.blendParts[0];
         part = first;
       }
+      // Cut-outs and shading maps act on the whole surface: only the outermost wrapper's count.
+      if (part.masked || part.shadingMap != ShadingMap::None)
+        w.add(doc.where(c), "a mask, normalmap or bumpmap inside a blendbsdf is ignored; wrap the blendbsdf instead");
       m.blendParts.push_back(part);
     }
     if (m.blendParts.size() != 2) throw InputError(doc.where(node), "blendbsdf needs two nested BSDFs");

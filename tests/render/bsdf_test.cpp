@@ -259,6 +259,15 @@ std::vector<SamplingCase> samplingCases() {
                            "_phi" + numberTag(phi),
                        anisotropicConductor(dist, 0.08f, 0.4f), direction(theta, phi), 96});
 
+  // Anisotropic rough glass: reflection and refraction with the elliptical distribution.
+  for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
+    Material glass = roughDielectric(dist, 0.1f);
+    glass.alphaV = 0.35f;
+    for (float theta : {30.0f, 160.0f})
+      cases.push_back({std::string("AnisotropicDielectric_") + distributionName(dist) + "_a0p1x0p35_wi" + numberTag(theta),
+                       glass, direction(theta, 40.0f), 96, 24});
+  }
+
   // Ward: the specular lobe sampled by anisotropic Beckmann half vectors, the diffuse lobe by
   // cosine; isotropic and anisotropic, each variant.
   for (WardVariant v : {WardVariant::Ward, WardVariant::WardDuer, WardVariant::Balanced})

@@ -217,6 +217,10 @@ TEST(Loader, BlendBsdfPartsWeightAndTwoSided) {
   EXPECT_NE(s.warnings.messages[0].find("blendbsdf inside a blendbsdf"), std::string::npos);
   EXPECT_THROW(loadScene(dir.write("t.xml", R"(<scene version="3.0.0"><shape type="cube">
     <bsdf type="blendbsdf"><bsdf type="diffuse"/></bsdf></shape></scene>)")), InputError);
+  const Scene masked = loadScene(dir.write("m.xml", R"(<scene version="3.0.0"><shape type="cube">
+    <bsdf type="blendbsdf"><bsdf type="mask"><bsdf type="diffuse"/></bsdf><bsdf type="diffuse"/></bsdf></shape></scene>)"));
+  ASSERT_EQ(masked.warnings.messages.size(), 2u);  // the partial opacity, and the ignored mask
+  EXPECT_NE(masked.warnings.messages[1].find("inside a blendbsdf is ignored"), std::string::npos);
   EXPECT_THROW(loadScene(dir.write("u.xml", R"(<scene version="3.0.0"><shape type="cube">
     <bsdf type="blendbsdf"><float name="weight" value="1.5"/><bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf>
     </shape></scene>)")), InputError);
