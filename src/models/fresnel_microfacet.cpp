@@ -98,7 +98,8 @@ float microfacetG1(MicrofacetKind kind, float ax, float ay, Vec3 v, Vec3 m) {
 Vec3 microfacetSampleNormal(MicrofacetKind kind, float ax, float ay, float u1, float u2) {
   float phi = 2 * kPi * u2;
   if (ax != ay) {
-    // tan(phi) = ay / ax tan(2 pi u2), on the branch of 2 pi u2.
+    // tan(phi) = ay / ax tan(2 pi u2 + pi / 2); atan gives one half-circle, u2 > 0.5 the
+    // other (a rotation of the mapping by pi, which leaves the density unchanged).
     phi = std::atan(ay / ax * std::tan(2 * kPi * u2 + 0.5f * kPi));
     if (u2 > 0.5f) phi += kPi;
   }

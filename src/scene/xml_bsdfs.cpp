@@ -112,6 +112,16 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
       m.blendParts.push_back(part);
     }
     if (m.blendParts.size() != 2) throw InputError(doc.where(node), "blendbsdf needs two nested BSDFs");
+    // ERPT follows a specular chain through "the" refraction of a vertex: two smooth
+    // dielectrics would give it two (and a wrong radiance scale for one of them).
+    auto refracts = [](const Material& p) { return p.kind == BsdfKind::Dielectric || p.kind == BsdfKind::ThinDielectric; };
+    if (refracts(m.blendParts[0]) && refracts(m.blendParts[1])) {
+      w.add(doc.where(node), "a blendbsdf of two smooth dielectrics is not supported; using its first BSDF");
+      const std::string name = m.name;
+      Material first = m.blendParts[0];
+      m = first;
+      m.name = name;
+    }
     m.blendWeight = props.getColorParam("weight", Color(0.5f), scene_);
     const Color wv = m.blendWeight.value;
     if (m.blendWeight.texture < 0 && !(wv.x >= 0 && wv.x <= 1 && wv.y >= 0 && wv.y <= 1 && wv.z >= 0 && wv.z <= 1))

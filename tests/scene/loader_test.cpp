@@ -221,6 +221,12 @@ TEST(Loader, BlendBsdfPartsWeightAndTwoSided) {
     <bsdf type="blendbsdf"><bsdf type="mask"><bsdf type="diffuse"/></bsdf><bsdf type="diffuse"/></bsdf></shape></scene>)"));
   ASSERT_EQ(masked.warnings.messages.size(), 2u);  // the partial opacity, and the ignored mask
   EXPECT_NE(masked.warnings.messages[1].find("inside a blendbsdf is ignored"), std::string::npos);
+  // Two smooth dielectrics (two Dirac refractions ERPT could not tell apart): the first, warned.
+  const Scene glass = loadScene(dir.write("g.xml", R"(<scene version="3.0.0"><shape type="cube">
+    <bsdf type="blendbsdf"><bsdf type="thindielectric"/><bsdf type="dielectric"/></bsdf></shape></scene>)"));
+  EXPECT_EQ(glass.materials[size_t(glass.mesh.material[0])].kind, BsdfKind::ThinDielectric);
+  ASSERT_EQ(glass.warnings.messages.size(), 1u);
+  EXPECT_NE(glass.warnings.messages[0].find("two smooth dielectrics"), std::string::npos);
   EXPECT_THROW(loadScene(dir.write("u.xml", R"(<scene version="3.0.0"><shape type="cube">
     <bsdf type="blendbsdf"><float name="weight" value="1.5"/><bsdf type="diffuse"/><bsdf type="diffuse"/></bsdf>
     </shape></scene>)")), InputError);
