@@ -62,15 +62,27 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
   Properties props = readProperties(doc, node, &children);
   std::string type = attribute(doc, node, "type");
   std::string id = attribute(doc, node, "id", false);
-  // A nested BSDF (by value or by <ref>), for wrappers.
+  // A child naming a BSDF: by value, or a <ref> that is not a texture's.
+  auto isBsdf = [&](const pugi::xml_node& c) {
+    const std::string tag = c.name();
+    return tag == "bsdf" || (tag == "ref" && !textureIds_.count(attribute(doc, c, "id")));
+  };
+  auto materialOf = [&](const pugi::xml_node& c) {
+    return std::string(c.name()) == "bsdf" ? bsdf(doc, c) : materialById(doc, c, attribute(doc, c, "id"));
+  };
+  // The first nested BSDF (index; -1: none), for wrappers.
   auto nested = [&]() -> int {
-    for (const pugi::xml_node& c : children) {
-      std::string tag = c.name();
-      if (tag == "bsdf") return bsdf(doc, c);
-      if (tag == "ref" && !textureIds_.count(attribute(doc, c, "id")))
-        return materialById(doc, c, attribute(doc, c, "id"));
-    }
+    for (const pugi::xml_node& c : children)
+      if (isBsdf(c)) return materialOf(c);
     return -1;
+  };
+  // A wrapper (twosided, mask, normalmap, bumpmap): a copy of its nested BSDF, named after both.
+  auto wrapped = [&]() -> Material {
+    const int inner = nested();
+    if (inner < 0) throw InputError(doc.where(node), type + " needs a nested <bsdf>");
+    Material copy = scene_.materials[size_t(inner)];
+    copy.name = id.empty() ? type + "(" + copy.name + ")" : id;
+    return copy;
   };
   Material m;
   m.name = id.empty() ? type : id;
@@ -79,28 +91,20 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     m.kind = BsdfKind::Diffuse;
     m.reflectance = props.getColorParam("reflectance", Color(0.5f), scene_);
   } else if (type == "twosided") {
-    int inner = nested();
-    if (inner < 0) throw InputError(doc.where(node), "twosided needs a nested <bsdf>");
-    m = scene_.materials[inner];
-    m.name = id.empty() ? "twosided(" + m.name + ")" : id;
+    m = wrapped();
     m.twoSided = true;
     for (Material& part : m.blendParts) part.twoSided = true;  // a blend's parts do the shading
   } else if (type == "mask") {
-    int inner = nested();
-    if (inner < 0) throw InputError(doc.where(node), "mask needs a nested <bsdf>");
-    m = scene_.materials[inner];
-    m.name = id.empty() ? "mask(" + m.name + ")" : id;
+    m = wrapped();
     m.masked = true;
     m.opacity = props.getColorParam("opacity", Color(0.5f), scene_);  // Mitsuba's default
     warnPartialOpacity(m.opacity, props.where());
   } else if (type == "blendbsdf") {
     m.kind = BsdfKind::Blend;
     for (const pugi::xml_node& c : children) {
-      const std::string tag = c.name();
-      const bool isBsdf = tag == "bsdf" || (tag == "ref" && !textureIds_.count(attribute(doc, c, "id")));
-      if (!isBsdf) continue;
+      if (!isBsdf(c)) continue;
       if (m.blendParts.size() == 2) throw InputError(doc.where(c), "blendbsdf takes two nested BSDFs, not more");
-      Material part = scene_.materials[size_t(tag == "bsdf" ? bsdf(doc, c) : materialById(doc, c, attribute(doc, c, "id")))];
+      Material part = scene_.materials[size_t(materialOf(c))];
       if (part.kind == BsdfKind::Blend) {
         w.add(doc.where(c), "a blendbsdf inside a blendbsdf is not supported; using its first BSDF");
         Material first = part.blendParts[0];
@@ -127,13 +131,10 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     if (m.blendWeight.texture < 0 && !(wv.x >= 0 && wv.x <= 1 && wv.y >= 0 && wv.y <= 1 && wv.z >= 0 && wv.z <= 1))
       throw InputError(props.find("weight")->where, "blendbsdf weight must be in [0, 1]");
   } else if (type == "normalmap" || type == "bumpmap") {
-    int inner = nested();
-    if (inner < 0) throw InputError(doc.where(node), type + " needs a nested <bsdf>");
+    m = wrapped();
     const int map = shadingMapTexture(doc, props, children);
     if (map < 0) throw InputError(doc.where(node), type + " needs a <texture> (the " +
                                                        (type == "normalmap" ? "normals" : "heights") + ")");
-    m = scene_.materials[inner];
-    m.name = id.empty() ? type + "(" + m.name + ")" : id;
     m.shadingMap = type == "normalmap" ? ShadingMap::Normal : ShadingMap::Bump;
     m.shadingTexture = map;
     if (type == "bumpmap") m.bumpScale = props.getFloat("scale", 1.0f);
