@@ -2,6 +2,7 @@
 // ("file:line") and what it is, on one line, so a user can jump straight to it.
 #pragma once
 
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -34,8 +35,10 @@ class UsageError : public std::runtime_error {
 // Non-fatal problems found while loading; printed by the CLI and by `erpt info`.
 struct Warnings {
   std::vector<std::string> messages;
+  // Each message once: a shapegroup member is read again for every instance that copies it.
   void add(const SourceLocation& where, const std::string& what) {
-    messages.push_back(where.str() + ": warning: " + what);
+    std::string message = where.str() + ": warning: " + what;
+    if (std::find(messages.begin(), messages.end(), message) == messages.end()) messages.push_back(std::move(message));
   }
 };
 

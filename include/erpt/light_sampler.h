@@ -60,6 +60,8 @@ class LightSampler {
   // 1 - cos of the half-angle of the cone sphere `sphere` subtends at `ref`, when sample()
   // samples that cone from there; 0 when it samples the sphere by area instead.
   float sphereCone(uint32_t sphere, Vec3 ref) const;
+  // The probability of picking a primitive's light (0 for one that does not emit).
+  float pickProbability(uint32_t primitive) const;
   bool sampleTriangle(const Item& item, float prob, Vec3 ref, float u1, float u2, LightSample& out) const;
   bool sampleSphere(const Item& item, float prob, Vec3 ref, float u1, float u2, LightSample& out) const;
   // Finishes an area-measure sample at point p, normal n of `primitive`.
@@ -67,7 +69,7 @@ class LightSampler {
   const Scene& scene_;
   std::vector<Item> items_;
   std::vector<float> cdf_;  // normalized, cdf_.back() == 1
-  std::vector<float> primitiveProbability_;  // per primitive id (0 if not emissive)
+  std::vector<float> primitiveProbability_;  // per world primitive id (0 if not emissive; instanced ids are past it)
   std::vector<float> emitterProbability_;   // per point / environment emitter
   float environmentProbability_ = 0;
   const Emitter* environment_ = nullptr;  // the environment emitter, when it can be picked

@@ -26,7 +26,7 @@
   F(float, v, {}, "triangle: barycentric of vertex 2; sphere: v")                                   \
   F(unsigned, primID, {}, "primitive id (scene.h: triangles, then spheres)")                        \
   F(unsigned, geomID, {}, "RTC_INVALID_GEOMETRY_ID on a miss")                                      \
-  F(unsigned, instID, {}, "instance id (unused)")
+  F(unsigned, instID, {}, "Embree instance geometry of the hit (tracer-internal)")
 
 // A camera sample of the direct-lighting integrator, as it moves through its stages.
 #define ERPT_DIRECT_SAMPLE_FIELDS(F, V, C)                                                          \

@@ -4,7 +4,9 @@
 // textures, emitters, camera and film.
 //
 // Primitive ids: every hit and every surface point names one primitive of one id space,
-// triangles first (0 .. triangleCount - 1), then spheres (triangleCount + sphere index).
+// triangles first (0 .. triangleCount - 1), then spheres (triangleCount + sphere index), then
+// the triangles of every `instance` (InstanceSet::firstPrimitive[k] + the triangle's index in
+// its group), which are stored once per shapegroup and traced as Embree instances.
 #pragma once
 
 #include <cstdint>
@@ -56,12 +58,42 @@ struct SphereSet {
   float area(uint32_t i) const { return 4 * kPi * radius[i] * radius[i]; }
 };
 
+// `shapegroup`s placed by `instance`s, traced as Embree instances (not copies): each group's
+// triangles are stored once, in the group's own space, in `prototypes` (group g owns
+// prototype triangles groupFirstTriangle[g] .. + groupTriangleCount[g]); each instance names
+// its group and its to_world. Members that cannot be shared this way (exact spheres, emitters,
+// masks, normal/bump maps, anisotropic roughness: they need world-space data per triangle) are
+// copied into the world mesh instead.
+struct InstanceSet {
+  TriangleSoup prototypes;
+  // per group
+  std::vector<uint32_t> groupFirstTriangle, groupTriangleCount;
+  std::vector<Vec3> groupLower, groupUpper;  // bounds of the group's vertices, group space
+  // per instance
+  std::vector<uint32_t> group;
+  std::vector<uint32_t> firstPrimitive;  // set when the scene has loaded (scene.h's id space)
+  std::vector<Transform> toWorld;
+  std::vector<Transform> normalToWorld;  // the inverse transpose of toWorld (apply with vector())
+  std::vector<uint8_t> mirrored;         // toWorld flips handedness: the winding's normal turns
+
+  size_t count() const { return group.size(); }
+  size_t groupCount() const { return groupFirstTriangle.size(); }
+  // The instance whose primitive range holds `primitive` (one of the instanced ids).
+  uint32_t instanceOf(uint32_t primitive) const;
+  // The prototype triangle behind an instanced primitive of instance k.
+  uint32_t prototypeTriangle(uint32_t k, uint32_t primitive) const {
+    return groupFirstTriangle[group[k]] + (primitive - firstPrimitive[k]);
+  }
+  uint64_t instancedTriangleCount() const;
+};
+
 struct ShapeInfo {
   std::string type;  // obj, ply, rectangle, ...
   std::string id;
   SourceLocation where;
   uint32_t firstTriangle = 0, triangleCount = 0;
   int sphere = -1;  // index into Scene::spheres when the shape is an exact sphere
+  int group = -1;   // a shapegroup member stored once: its triangles are InstanceSet::prototypes'
 };
 
 enum class EmitterKind { Area, Point, Constant, Directional };
@@ -122,6 +154,7 @@ struct Scene {
   std::string file;
   TriangleSoup mesh;
   SphereSet spheres;
+  InstanceSet instances;
   std::vector<ShapeInfo> shapes;
   std::vector<Material> materials;
   std::vector<Texture> textures;
@@ -147,17 +180,21 @@ struct Scene {
   const Emitter* environment() const;
 
   // The primitive id space (see the top of this file).
-  size_t primitiveCount() const { return mesh.triangleCount() + spheres.count(); }
-  bool isSphere(uint32_t primitive) const { return primitive >= mesh.triangleCount(); }
+  size_t worldPrimitiveCount() const { return mesh.triangleCount() + spheres.count(); }  // own world-space data
+  size_t primitiveCount() const { return worldPrimitiveCount() + size_t(instances.instancedTriangleCount()); }
+  bool isSphere(uint32_t primitive) const {
+    return primitive >= mesh.triangleCount() && primitive < worldPrimitiveCount();
+  }
+  bool isInstanced(uint32_t primitive) const { return primitive >= worldPrimitiveCount(); }
   uint32_t sphereOf(uint32_t primitive) const { return primitive - uint32_t(mesh.triangleCount()); }
   uint32_t spherePrimitive(uint32_t sphere) const { return uint32_t(mesh.triangleCount()) + sphere; }
+  // Instanced triangles never emit (emitting members are copied into the world mesh).
   int emitterOf(uint32_t primitive) const {
-    return isSphere(primitive) ? spheres.emitter[sphereOf(primitive)] : mesh.emitter[primitive];
+    if (primitive < mesh.triangleCount()) return mesh.emitter[primitive];
+    return isSphere(primitive) ? spheres.emitter[sphereOf(primitive)] : -1;
   }
   // Surface area of a primitive.
-  float primitiveArea(uint32_t primitive) const {
-    return isSphere(primitive) ? spheres.area(sphereOf(primitive)) : 0.5f * length(mesh.faceNormal(primitive));
-  }
+  float primitiveArea(uint32_t primitive) const;
 };
 
 }  // namespace erpt

@@ -93,10 +93,17 @@ bool triangleUvDerivatives(const TriangleSoup& m, uint32_t tri, Vec3& dpdu, Vec3
 // frame of a triangle hit by the one its material asks for.
 void adjustShadingFrame(const Scene& scene, SurfacePoint& sp);
 
-// The surface point a hit (primitive, u, v) names. (Spheres whose material adjusts its
-// shading frame are tessellated when the scene loads.)
+// The world-space surface point of an instanced triangle (instances.cpp): its prototype's
+// point in group space, placed by the instance's to_world.
+SurfacePoint instanceSurfaceAt(const Scene& scene, uint32_t primitive, float b1, float b2);
+
+// The surface point a hit (primitive, u, v) names. (Spheres and instanced members whose
+// material adjusts its shading frame are stored as world triangles when the scene loads.)
 inline SurfacePoint surfaceAt(const Scene& scene, uint32_t primitive, float u, float v) {
-  if (scene.isSphere(primitive)) return sphereSurfaceAt(scene.spheres, scene.sphereOf(primitive), primitive, u, v);
+  if (primitive >= scene.mesh.triangleCount()) {
+    if (scene.isSphere(primitive)) return sphereSurfaceAt(scene.spheres, scene.sphereOf(primitive), primitive, u, v);
+    return instanceSurfaceAt(scene, primitive, u, v);
+  }
   SurfacePoint sp = triangleSurfaceAt(scene.mesh, primitive, u, v);
   if (scene.adjustsShadingFrames && scene.materials[size_t(sp.material)].adjustsShadingFrame())
     adjustShadingFrame(scene, sp);

@@ -54,13 +54,16 @@ int runInfo(const InfoArgs& a) {
             << " degenerate dropped)\n"
             << "vertices:   " << scene.mesh.vertexCount() << "\n"
             << "spheres:    " << scene.spheres.count() << " (exact)\n"
+            << "instances:  " << scene.instances.count() << " of " << scene.instances.groupCount() << " shapegroup(s), "
+            << scene.instances.prototypes.triangleCount() << " triangles stored, "
+            << scene.instances.instancedTriangleCount() << " placed\n"
             << "shapes:     " << scene.shapes.size() << "\n";
   for (const ShapeInfo& s : scene.shapes) {
     std::cout << "  " << s.type << (s.id.empty() ? "" : " '" + s.id + "'") << ": ";
     if (s.sphere >= 0)
       std::cout << "exact sphere, radius " << scene.spheres.radius[size_t(s.sphere)] << "\n";
     else
-      std::cout << s.triangleCount << " triangles\n";
+      std::cout << s.triangleCount << " triangles" << (s.group >= 0 ? " (instanced shapegroup member)" : "") << "\n";
   }
   std::cout << "lights:     " << scene.emitters.size() << "\n";
   for (const Emitter& e : scene.emitters)

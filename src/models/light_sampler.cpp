@@ -18,12 +18,20 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
   };
   for (size_t i = 0; i < mesh.vertexCount(); ++i) grow(mesh.position(uint32_t(i)), 0.0f);
   for (uint32_t i = 0; i < spheres.count(); ++i) grow(spheres.center(i), spheres.radius[i]);
-  if (mesh.vertexCount() + spheres.count() > 0) {
+  const InstanceSet& instances = scene.instances;
+  for (size_t k = 0; k < instances.count(); ++k) {  // the corners of each group's box, placed
+    const Vec3 lower = instances.groupLower[instances.group[k]], upper = instances.groupUpper[instances.group[k]];
+    for (int corner = 0; corner < 8; ++corner)
+      grow(instances.toWorld[k].point({corner & 1 ? upper.x : lower.x, corner & 2 ? upper.y : lower.y,
+                                       corner & 4 ? upper.z : lower.z}),
+           0.0f);
+  }
+  if (mesh.vertexCount() + spheres.count() + instances.count() > 0) {
     sceneCenter_ = (lo + hi) * 0.5f;
     sceneRadius_ = std::max(1e-3f, 0.5f * length(hi - lo));
   }
   std::vector<double> weights;
-  for (uint32_t p = 0; p < scene.primitiveCount(); ++p) {
+  for (uint32_t p = 0; p < scene.worldPrimitiveCount(); ++p) {  // instanced triangles never emit
     const int e = scene.emitterOf(p);
     if (e < 0) continue;
     float area = scene.primitiveArea(p);
@@ -52,7 +60,7 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
   double total = 0;
   for (double w : weights) total += w;
   double running = 0;
-  primitiveProbability_.assign(scene.primitiveCount(), 0.0f);
+  primitiveProbability_.assign(scene.worldPrimitiveCount(), 0.0f);
   emitterProbability_.assign(scene.emitters.size(), 0.0f);
   for (size_t i = 0; i < items_.size(); ++i) {
     running += weights[i];
@@ -86,8 +94,12 @@ float LightSampler::sphereCone(uint32_t sphere, Vec3 ref) const {
   return sin2Max / (1 + cosMax);  // = 1 - cosMax without the cancellation for small cones
 }
 
+float LightSampler::pickProbability(uint32_t primitive) const {
+  return primitive < primitiveProbability_.size() ? primitiveProbability_[primitive] : 0.0f;
+}
+
 float LightSampler::pdfSolidAngle(const SurfacePoint& light, Vec3 ref) const {
-  const float prob = primitiveProbability_[light.primitive];
+  const float prob = pickProbability(light.primitive);
   if (prob == 0) return 0.0f;
   if (scene_.isSphere(light.primitive)) {
     const float cone = sphereCone(scene_.sphereOf(light.primitive), ref);
@@ -101,7 +113,7 @@ float LightSampler::pdfSolidAngle(const SurfacePoint& light, Vec3 ref) const {
 }
 
 float LightSampler::pdfArea(uint32_t primitive, Vec3 ref, Vec3 p, Vec3 n) const {
-  const float prob = primitiveProbability_[primitive];
+  const float prob = pickProbability(primitive);
   if (prob == 0) return 0.0f;
   if (scene_.isSphere(primitive)) {
     const float cone = sphereCone(scene_.sphereOf(primitive), ref);

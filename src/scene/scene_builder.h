@@ -28,10 +28,20 @@ class SceneBuilder {
   void sensor(const Document& doc, const pugi::xml_node& node);
   void film(const Document& doc, const pugi::xml_node& node);
   // `parent`: the to_world of the `instance` this shape is a copy for (shapegroup members).
-  void shape(const Document& doc, const pugi::xml_node& node, const Transform* parent = nullptr, int depth = 0);
-  // `shapegroup` (kept by id) and `instance` (copies of the group's shapes, placed by its
-  // to_world; not Embree instances yet).
+  // `group` >= 0: a shapegroup member to store once, in group space, as part of that
+  // instance group's prototypes; returns false (and adds nothing) when the member cannot be
+  // shared (scene.h's InstanceSet says which), so that each instance copies it instead.
+  bool shape(const Document& doc, const pugi::xml_node& node, const Transform* parent = nullptr, int depth = 0,
+             int group = -1);
+  // `shapegroup` (kept by id) and `instance`: an Embree instance of the group's shareable
+  // members, built when the group is first instanced, plus copies of the others, placed by
+  // the instance's to_world. Instances inside shapegroups are copies all the way down.
   void instance(const Document& doc, const pugi::xml_node& node, Properties& props, const Transform* parent, int depth);
+  struct GroupPlan {
+    int group = -1;                        // InstanceSet group, -1 when no member is shareable
+    std::vector<pugi::xml_node> copied;    // members each instance copies
+  };
+  GroupPlan planGroup(const Document& doc, const pugi::xml_node& groupNode, int depth);
   int emitter(const Document& doc, const pugi::xml_node& node, int shape);
   // A one-line warning when a mask's opacity is partial (neither ~0 nor ~1) anywhere it matters.
   void warnPartialOpacity(const ColorParam& opacity, const SourceLocation& where);
@@ -51,7 +61,9 @@ class SceneBuilder {
   // with a warning at `where` naming both.
   std::string resolvePath(const Document& doc, const std::string& relative, const SourceLocation& where) const;
   int materialById(const Document& doc, const pugi::xml_node& node, const std::string& id);
-  void appendMesh(MeshData& mesh, const Transform& toWorld, const Properties& props, int material,
+  // Appends a shape's triangles, placed by toWorld, to `soup` (the world mesh or the
+  // instance prototypes).
+  void appendMesh(TriangleSoup& soup, MeshData& mesh, const Transform& toWorld, const Properties& props, int material,
                   int shapeIndex, const SourceLocation& meshWhere);
   // An exact sphere, when to_world keeps it one (rotation, uniform scale, translation);
   // false otherwise (the caller tessellates it).
@@ -65,6 +77,7 @@ class SceneBuilder {
   std::list<Document> documents_;  // kept alive: nodes point into them
   std::map<std::string, int> materialIds_, textureIds_;
   std::map<std::string, pugi::xml_node> shapeGroups_;
+  std::map<std::string, GroupPlan> groupPlans_;  // by shapegroup id, once it is instanced
   std::map<std::string, MeshData> instanceMeshes_;  // mesh files of shapegroup members, by file and options
   int defaultMaterial_ = -1;
   bool sawSensor_ = false;

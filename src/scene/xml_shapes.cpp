@@ -25,15 +25,68 @@ void SceneBuilder::instance(const Document& doc, const pugi::xml_node& node, Pro
   if (depth >= 8) throw InputError(where, "instances nested more than 8 deep (a shapegroup instancing itself?)");
   const Transform toWorld = parent ? *parent * props.getTransform("to_world") : props.getTransform("to_world");
   props.warnUnused(scene_.warnings);
-  for (const pugi::xml_node& member : group->second.children("shape")) shape(doc, member, &toWorld, depth + 1);
+  if (!toWorld.isFinite()) throw InputError(where, "instance to_world is not finite");
+  const double det = toWorld.determinant3x3();
+  if (!(std::abs(det) > 0)) {
+    scene_.warnings.add(where, "instance to_world is singular (a zero scale); the instance is skipped");
+    return;
+  }
+  if (parent) {  // inside a shapegroup: copies
+    for (const pugi::xml_node& member : group->second.children("shape")) shape(doc, member, &toWorld, depth + 1);
+    return;
+  }
+  auto plan = groupPlans_.find(id);
+  if (plan == groupPlans_.end()) plan = groupPlans_.emplace(id, planGroup(doc, group->second, depth)).first;
+  if (plan->second.group >= 0) {
+    InstanceSet& in = scene_.instances;
+    in.group.push_back(uint32_t(plan->second.group));
+    in.firstPrimitive.push_back(0);  // numbered when the scene has loaded
+    in.toWorld.push_back(toWorld);
+    Transform normalToWorld = toWorld.inverse();
+    for (int r = 0; r < 4; ++r)
+      for (int c = r + 1; c < 4; ++c) std::swap(normalToWorld(r, c), normalToWorld(c, r));
+    in.normalToWorld.push_back(normalToWorld);
+    in.mirrored.push_back(det < 0);
+  }
+  for (const pugi::xml_node& member : plan->second.copied) shape(doc, member, &toWorld, depth + 1);
 }
 
-void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const Transform* parent, int depth) {
+SceneBuilder::GroupPlan SceneBuilder::planGroup(const Document& doc, const pugi::xml_node& groupNode, int depth) {
+  InstanceSet& in = scene_.instances;
+  TriangleSoup& prototypes = in.prototypes;
+  const int g = int(in.groupCount());
+  const uint32_t firstTriangle = uint32_t(prototypes.triangleCount()), firstVertex = uint32_t(prototypes.vertexCount());
+  GroupPlan plan;
+  for (const pugi::xml_node& member : groupNode.children("shape"))
+    if (!shape(doc, member, nullptr, depth + 1, g)) plan.copied.push_back(member);
+  const uint32_t count = uint32_t(prototypes.triangleCount()) - firstTriangle;
+  if (count == 0) return plan;
+  Vec3 lo(1e30f), hi(-1e30f);
+  for (uint32_t i = firstVertex; i < prototypes.vertexCount(); ++i)
+    for (int a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], prototypes.position(i)[a]);
+      hi[a] = std::max(hi[a], prototypes.position(i)[a]);
+    }
+  in.groupFirstTriangle.push_back(firstTriangle);
+  in.groupTriangleCount.push_back(count);
+  in.groupLower.push_back(lo);
+  in.groupUpper.push_back(hi);
+  plan.group = g;
+  return plan;
+}
+
+bool SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const Transform* parent, int depth,
+                         int group) {
+  std::string type = attribute(doc, node, "type");
+  // Shared members are meshes; spheres stay exact per copy, instances nest as copies.
+  if (group >= 0 && (type == "shapegroup" || type == "instance" || type == "sphere")) return false;
   std::vector<pugi::xml_node> children;
   Properties props = readProperties(doc, node, &children);
-  std::string type = attribute(doc, node, "type");
   SourceLocation where = doc.where(node);
-  if (type == "shapegroup" || type == "instance") return instance(doc, node, props, parent, depth);
+  if (type == "shapegroup" || type == "instance") {
+    instance(doc, node, props, parent, depth);
+    return true;
+  }
 
   // The mesh, in object space (empty for an exact sphere).
   MeshData mesh;
@@ -88,7 +141,7 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const 
     exactSphere = !tessellateSpheres_;
   } else {
     scene_.warnings.add(where, "shape '" + type + "' is not supported; skipped");
-    return;
+    return true;
   }
   if (props.getBool("face_normals", false)) mesh.normals.clear();
   // Mitsuba 0.6 OBJ/PLY option; normals are computed from the mesh when absent anyway.
@@ -104,6 +157,8 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const 
     else scene_.warnings.add(doc.where(child), "<" + tag + "> inside <shape> is not supported; ignored");
   }
   if (material < 0) material = defaultMaterial();
+  const Material& surface = scene_.materials[size_t(material)];
+  if (group >= 0 && (!emitters.empty() || surface.masked || surface.adjustsShadingFrame())) return false;
   if (exactSphere && scene_.materials[size_t(material)].masked) {
     // Cut-outs are an intersection filter on the triangles, whose uvs the mask reads.
     scene_.warnings.add(where, "a masked sphere is tessellated (cut-outs apply to triangles)");
@@ -121,7 +176,9 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const 
   info.type = type;
   info.id = attribute(doc, node, "id", false);
   info.where = where;
-  info.firstTriangle = uint32_t(scene_.mesh.triangleCount());
+  info.group = group;
+  TriangleSoup& soup = group >= 0 ? scene_.instances.prototypes : scene_.mesh;
+  info.firstTriangle = uint32_t(soup.triangleCount());
   scene_.shapes.push_back(info);
   const Transform toWorld = parent ? *parent * props.getTransform("to_world") : props.getTransform("to_world");
   const bool flip = props.getBool("flip_normals", false);
@@ -130,8 +187,8 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const 
     exactSphere = false;
   }
   if (type == "sphere" && !exactSphere) mesh = makeSphere(sphereCenter, sphereRadius);
-  if (!exactSphere) appendMesh(mesh, toWorld, props, material, shapeIndex, meshWhere);
-  scene_.shapes.back().triangleCount = uint32_t(scene_.mesh.triangleCount()) - info.firstTriangle;
+  if (!exactSphere) appendMesh(soup, mesh, toWorld, props, material, shapeIndex, meshWhere);
+  scene_.shapes.back().triangleCount = uint32_t(soup.triangleCount()) - info.firstTriangle;
 
   if (!emitters.empty() && scene_.materials[size_t(material)].masked)
     scene_.warnings.add(where, "an emitting shape is not cut by its mask (light sampling picks points by area)");
@@ -142,11 +199,11 @@ void SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const 
     if (exactSphere) scene_.spheres.emitter.back() = index;
   }
   props.warnUnused(scene_.warnings);
+  return true;
 }
 
-void SceneBuilder::appendMesh(MeshData& mesh, const Transform& toWorld, const Properties& props, int material,
-                              int shapeIndex, const SourceLocation& meshWhere) {
-  TriangleSoup& soup = scene_.mesh;
+void SceneBuilder::appendMesh(TriangleSoup& soup, MeshData& mesh, const Transform& toWorld, const Properties& props,
+                              int material, int shapeIndex, const SourceLocation& meshWhere) {
   const bool flip = props.getBool("flip_normals", false);
   const bool hasNormals = !mesh.normals.empty(), hasUvs = !mesh.uvs.empty();
   const uint32_t base = uint32_t(soup.vertexCount());
@@ -327,6 +384,14 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
   xml::SceneBuilder builder(scene, options);
   builder.loadFile(path, 0);
   for (const Material& m : scene.materials) scene.adjustsShadingFrames |= m.adjustsShadingFrame();
+  // Instanced triangles take the primitive ids after the world's own, instance by instance.
+  uint64_t next = scene.worldPrimitiveCount();
+  for (size_t k = 0; k < scene.instances.count(); ++k) {
+    scene.instances.firstPrimitive[k] = uint32_t(next);
+    next += scene.instances.groupTriangleCount[scene.instances.group[k]];
+    if (next >= 0xffff0000u)
+      throw InputError({path, 0}, "the instances place more than 4 billion triangles (primitive ids are 32-bit)");
+  }
   if (scene.primitiveCount() == 0 && scene.emitters.empty())
     throw InputError({path, 0}, "the scene has no geometry and no emitters");
   return scene;

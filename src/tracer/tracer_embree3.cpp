@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <stdexcept>
+#include <vector>
 
 #include "erpt/surface.h"
 #include "erpt/tracer.h"
@@ -18,13 +19,25 @@ void onEmbreeError(void*, RTCError code, const char* message) {
 struct Tracer::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  std::vector<RTCScene> groupScenes;  // one per instanced shapegroup
+  std::vector<float> prototypeVertices;  // shared by the groups' geometries (x, y, z, pad)
   const SphereSet* spheres = nullptr;
   unsigned sphereGeometry = RTC_INVALID_GEOMETRY_ID;
   unsigned firstSpherePrimitive = 0;
+  const InstanceSet* instances = nullptr;
+  unsigned firstInstanceGeometry = RTC_INVALID_GEOMETRY_ID;
 
-  // Embree names a sphere hit by (sphere geometry, sphere index); the renderer by the
-  // primitive id and the sphere coordinates of the hit point (surface.h).
-  void toSphereHits(const RayQueue& rays, HitQueue& hits, IndexRange range) const {
+  // Embree names a hit by (instance, geometry, primitive in it); the renderer by one
+  // primitive id (scene.h) and, for a sphere, the sphere coordinates of the hit point
+  // (surface.h).
+  void toScenePrimitives(const RayQueue& rays, HitQueue& hits, IndexRange range) const {
+    if (instances) {
+      for (size_t i = range.begin; i < range.end; ++i) {
+        if (hits.instID[i] == RTC_INVALID_GEOMETRY_ID) continue;
+        hits.primID[i] += instances->firstPrimitive[hits.instID[i] - firstInstanceGeometry];
+        hits.geomID[i] = hits.instID[i];
+      }
+    }
     if (sphereGeometry == RTC_INVALID_GEOMETRY_ID) return;
     for (size_t i = range.begin; i < range.end; ++i) {
       if (hits.geomID[i] != sphereGeometry) continue;
@@ -52,6 +65,77 @@ void attachSpheres(RTCDevice device, RTCScene scene, const SphereSet& spheres) {
   rtcAttachGeometry(scene, geom);
   rtcReleaseGeometry(geom);
 }
+
+void rejectCutOutHits(const RTCFilterFunctionNArguments* args);
+
+// Triangles `first` .. first + count - 1 of `mesh` as one Embree triangle geometry of `scene`.
+// `mesh`'s vertices as Embree reads them: x, y, z and a pad, one vertex more than the mesh
+// has (Embree may read 16 bytes from the last vertex).
+void fillVertices(const TriangleSoup& mesh, float* vertices) {
+  for (size_t i = 0; i < mesh.vertexCount(); ++i) {
+    vertices[4 * i] = mesh.px[i];
+    vertices[4 * i + 1] = mesh.py[i];
+    vertices[4 * i + 2] = mesh.pz[i];
+    vertices[4 * i + 3] = 0;
+  }
+}
+
+// Triangles `first` .. first + count - 1 of `mesh` as one Embree triangle geometry of
+// `scene`, with its own vertex buffer or `sharedVertices` (fillVertices' layout).
+void attachTriangles(RTCDevice device, RTCScene scene, const TriangleSoup& mesh, size_t first, size_t count,
+                     const Scene* masks, const float* sharedVertices = nullptr) {
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  if (sharedVertices) {
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sharedVertices, 0,
+                               4 * sizeof(float), mesh.vertexCount());
+  } else {
+    fillVertices(mesh, static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                                   4 * sizeof(float), mesh.vertexCount())));
+  }
+  auto* indices = static_cast<unsigned*>(
+      rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), count));
+  for (size_t t = 0; t < count; ++t) {
+    indices[3 * t] = mesh.v0[first + t];
+    indices[3 * t + 1] = mesh.v1[first + t];
+    indices[3 * t + 2] = mesh.v2[first + t];
+  }
+  if (masks) {
+    // `mask` cut-outs: hits where the opacity is below 0.5 are rejected for every ray.
+    rtcSetGeometryUserData(geom, const_cast<Scene*>(masks));
+    rtcSetGeometryIntersectFilterFunction(geom, rejectCutOutHits);
+    rtcSetGeometryOccludedFilterFunction(geom, rejectCutOutHits);
+  }
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene, geom);
+  rtcReleaseGeometry(geom);
+}
+
+// Each instance as an Embree instance of its group's scene, placed by its to_world.
+void attachInstances(RTCDevice device, RTCScene scene, const InstanceSet& in, std::vector<float>& vertices,
+                     std::vector<RTCScene>& groupScenes) {
+  vertices.assign(4 * (in.prototypes.vertexCount() + 1), 0.0f);
+  fillVertices(in.prototypes, vertices.data());
+  for (size_t g = 0; g < in.groupCount(); ++g) {
+    RTCScene group = rtcNewScene(device);
+    rtcSetSceneBuildQuality(group, RTC_BUILD_QUALITY_HIGH);
+    attachTriangles(device, group, in.prototypes, in.groupFirstTriangle[g], in.groupTriangleCount[g], nullptr,
+                    vertices.data());
+    rtcCommitScene(group);
+    groupScenes.push_back(group);
+  }
+  for (size_t k = 0; k < in.count(); ++k) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(geom, groupScenes[in.group[k]]);
+    float rows[12];
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c) rows[4 * r + c] = float(in.toWorld[k](r, c));
+    rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, rows);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometry(scene, geom);
+    rtcReleaseGeometry(geom);
+  }
+}
+
 // Embree intersection filter (N rays at once): rejects candidate hits on the cut-out part of
 // a `mask` material, so traversal goes on behind them.
 void rejectCutOutHits(const RTCFilterFunctionNArguments* args) {
@@ -72,45 +156,29 @@ Tracer::Tracer(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   impl_->scene = rtcNewScene(impl_->device);
   rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
   const TriangleSoup& mesh = scene.mesh;
+  // Geometry ids in attachment order: world triangles, spheres, instances.
+  unsigned nextGeometry = 0;
   if (mesh.triangleCount() > 0) {
-    RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    // Embree may read 16 bytes from the last vertex: its own buffer is padded for that.
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                  4 * sizeof(float), mesh.vertexCount()));
-    for (size_t i = 0; i < mesh.vertexCount(); ++i) {
-      vertices[4 * i] = mesh.px[i];
-      vertices[4 * i + 1] = mesh.py[i];
-      vertices[4 * i + 2] = mesh.pz[i];
-      vertices[4 * i + 3] = 0;
-    }
-    auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                    3 * sizeof(unsigned), mesh.triangleCount()));
-    for (size_t t = 0; t < mesh.triangleCount(); ++t) {
-      indices[3 * t] = mesh.v0[t];
-      indices[3 * t + 1] = mesh.v1[t];
-      indices[3 * t + 2] = mesh.v2[t];
-    }
-    if (scene.hasMasks()) {
-      // `mask` cut-outs: hits where the opacity is below 0.5 are rejected for every ray.
-      rtcSetGeometryUserData(geom, const_cast<Scene*>(&scene));
-      rtcSetGeometryIntersectFilterFunction(geom, rejectCutOutHits);
-      rtcSetGeometryOccludedFilterFunction(geom, rejectCutOutHits);
-    }
-    rtcCommitGeometry(geom);
-    rtcAttachGeometry(impl_->scene, geom);
-    rtcReleaseGeometry(geom);
+    attachTriangles(impl_->device, impl_->scene, mesh, 0, mesh.triangleCount(), scene.hasMasks() ? &scene : nullptr);
+    ++nextGeometry;
   }
   if (scene.spheres.count() > 0) {
     impl_->spheres = &scene.spheres;
     impl_->firstSpherePrimitive = uint32_t(mesh.triangleCount());
-    impl_->sphereGeometry = mesh.triangleCount() > 0 ? 1u : 0u;  // ids in attachment order
+    impl_->sphereGeometry = nextGeometry++;
     attachSpheres(impl_->device, impl_->scene, scene.spheres);
+  }
+  if (scene.instances.count() > 0) {
+    impl_->instances = &scene.instances;
+    impl_->firstInstanceGeometry = nextGeometry;
+    attachInstances(impl_->device, impl_->scene, scene.instances, impl_->prototypeVertices, impl_->groupScenes);
   }
   rtcCommitScene(impl_->scene);
 }
 
 Tracer::~Tracer() {
   if (impl_->scene) rtcReleaseScene(impl_->scene);
+  for (RTCScene group : impl_->groupScenes) rtcReleaseScene(group);
   if (impl_->device) rtcReleaseDevice(impl_->device);
 }
 
@@ -133,7 +201,7 @@ RTCIntersectContext makeContext(RayCoherence coherence) {
 void Tracer::intersect(RayQueue& rays, HitQueue& hits, IndexRange range, RayCoherence coherence) const {
   if (range.size() == 0) return;
   size_t b = range.begin;
-  for (size_t i = b; i < range.end; ++i) hits.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+  for (size_t i = b; i < range.end; ++i) hits.geomID[i] = hits.instID[i] = RTC_INVALID_GEOMETRY_ID;
   RTCRayHitNp rh;
   rh.ray = rayColumns(rays, b);
   rh.hit.Ng_x = hits.ngX.data() + b;
@@ -146,7 +214,7 @@ void Tracer::intersect(RayQueue& rays, HitQueue& hits, IndexRange range, RayCohe
   rh.hit.instID[0] = hits.instID.data() + b;
   RTCIntersectContext ctx = makeContext(coherence);
   rtcIntersectNp(impl_->scene, &ctx, &rh, unsigned(range.size()));
-  impl_->toSphereHits(rays, hits, range);
+  impl_->toScenePrimitives(rays, hits, range);
 }
 
 void Tracer::occluded(RayQueue& rays, IndexRange range) const {
@@ -181,6 +249,7 @@ void Tracer::intersectOneByOne(RayQueue& rays, HitQueue& hits, IndexRange range)
     RTCRayHit rh;
     rh.ray = scalarRay(rays, i);
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->scene, &ctx, &rh);
     rays.tfar[i] = rh.ray.tfar;
     hits.ngX[i] = rh.hit.Ng_x;
@@ -190,8 +259,9 @@ void Tracer::intersectOneByOne(RayQueue& rays, HitQueue& hits, IndexRange range)
     hits.v[i] = rh.hit.v;
     hits.primID[i] = rh.hit.primID;
     hits.geomID[i] = rh.hit.geomID;
+    hits.instID[i] = rh.hit.instID[0];
   }
-  impl_->toSphereHits(rays, hits, range);
+  impl_->toScenePrimitives(rays, hits, range);
 }
 
 void Tracer::occludedOneByOne(RayQueue& rays, IndexRange range) const {
