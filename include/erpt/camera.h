@@ -28,6 +28,14 @@ class Camera {
   // direction.
   bool hasLens() const { return apertureRadius_ > 0; }
   void throughLens(float u1, float u2, Vec3& origin, Vec3& direction, float& tnear, float& tfar) const;
+  // The ray from a given lens point through film position (filmX, filmY): the pinhole ray
+  // without a lens. ERPT's chains keep their path's lens point (vertex 0) and move the film
+  // position: for a fixed lens point the film-to-solid-angle Jacobian is cos^3 / (plane
+  // distance)^2 of the ray's own angle to the axis, as for a pinhole (docs/erpt-acceptance.md).
+  Ray generateRayFrom(Vec3 lensPoint, float filmX, float filmY) const;
+  // The film position whose ray from lensPoint passes through world point p; false behind
+  // the lens. project(p) without a lens.
+  bool projectFrom(Vec3 lensPoint, Vec3 p, float& filmX, float& filmY) const;
   // Cosine between a world direction leaving the camera and the optical axis.
   float cosToAxis(Vec3 direction) const;
   float tanHalfFovX() const { return tanHalfX_; }

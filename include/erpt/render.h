@@ -64,10 +64,6 @@ struct RenderStats {
   std::vector<std::pair<std::string, RgbImage>> extraImages;
 };
 
-// Whether an integrator renders a thinlens sensor's depth of field (path, direct) or a pinhole
-// (erpt, pmc-er).
-bool integratorHasLens(const std::string& integrator);
-
 // Settings with the scene's values filled in where the caller left them open.
 RenderSettings resolveSettings(const Scene& scene, RenderSettings settings);
 // Names of the integrators render() knows.

@@ -163,8 +163,6 @@ RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
     s.filterSet = true;
     s.filter = a.filter == "box" ? FilterKind::Box : a.filter == "tent" ? FilterKind::Tent : FilterKind::Gaussian;
   }
-  if (scene.camera.apertureRadius > 0 && !integratorHasLens(s.integrator))
-    std::cerr << "warning: " << s.integrator << " renders the thinlens sensor as a pinhole (no depth of field)\n";
   if (a.integrator.empty() && !sceneIntegratorKnown && !a.quiet)
     std::cerr << "note: the scene asks for integrator '" << scene.integrator.type << "'; rendering with '"
               << s.integrator << "'\n";

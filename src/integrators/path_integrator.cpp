@@ -117,11 +117,14 @@ void startPaths(PathWavefront& w, int cur, const PathSampleSet& samples, size_t 
 }
 
 // Seed recording: the eye vertex of path id i is vertex i of the history.
-void writeEyeVertices(VertexQueue& history, PathQueue& paths, Vec3 eye, const uint32_t* ids, IndexRange r) {
+// The eye vertex of each new path: its camera ray's origin (the pinhole, or the lens point a
+// thin lens sampled), which ERPT's chains keep.
+void writeEyeVertices(VertexQueue& history, PathQueue& paths, const RayQueue& cameraRays, size_t firstSlot,
+                      const uint32_t* ids, IndexRange r) {
   VertexQueue::Row v;  // kind kEyeVertex, no material, no emitter, no parent
-  v.p = eye;
   v.pdfForward = 1;  // the camera ray: density of the film position (filter-sampled)
   for (size_t j = r.begin; j < r.end; ++j) {
+    v.p = cameraRays.orgAt(firstSlot + j);
     history.setRow(ids[j], v);
     paths.lastVertex[ids[j]] = int32_t(ids[j]);
   }
@@ -159,7 +162,7 @@ void traceSamples(const RenderSetup& setup, const PathSampleSet& samples, size_t
           w.paths.filmX[w.freeIds[j]] = w.startX[live + j];
           w.paths.filmY[w.freeIds[j]] = w.startY[live + j];
         }
-        if (rec) writeEyeVertices(rec->history, w.paths, setup.camera.position(), w.freeIds.data(), r);
+        if (rec) writeEyeVertices(rec->history, w.paths, w.rays[cur], live, w.freeIds.data(), r);
       });
       w.freeIds.erase(w.freeIds.begin(), w.freeIds.begin() + ptrdiff_t(m));
       live += m;

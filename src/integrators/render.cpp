@@ -175,8 +175,6 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
 
 }  // namespace
 
-bool integratorHasLens(const std::string& integrator) { return integrator == "path" || integrator == "direct"; }
-
 RenderSettings resolveSettings(const Scene& scene, RenderSettings s) {
   if (s.width <= 0) s.width = scene.film.width;
   if (s.height <= 0) s.height = scene.film.height;

@@ -20,14 +20,6 @@ struct RenderSetup {
     return s.integrator == "path" && (m == FilmMode::Splat || m == FilmMode::SplatUnbiased);
   }
 
-  // The camera an integrator renders with. ERPT and PMC-ER use a pinhole even for a thinlens
-  // sensor: their lens perturbation moves paths through a single eye point.
-  static CameraSettings cameraFor(const Scene& scene, const RenderSettings& s) {
-    CameraSettings c = scene.camera;
-    if (!integratorHasLens(s.integrator)) c.apertureRadius = 0;
-    return c;
-  }
-
   ThreadPool pool;
   std::shared_ptr<const Tracer> sharedTracer;
   const Tracer& tracer;
@@ -46,7 +38,7 @@ struct RenderSetup {
       : pool(s.threads),
         sharedTracer(s.tracer ? s.tracer : std::make_shared<const Tracer>(scene)),
         tracer(*sharedTracer),
-        camera(cameraFor(scene, s), s.width, s.height),
+        camera(scene.camera, s.width, s.height),
         filter(s.filter),
         sampling(splats(s) ? FilterKind::Box : s.filter),
         filmMode(splats(s) ? filmModeFor(s.film, s.filter) : FilmMode::Fis),

@@ -52,15 +52,42 @@ Camera::Ray Camera::generateRay(float filmX, float filmY) const {
   return r;
 }
 
+namespace {
+// The ray from `origin` towards the point the pinhole ray along `direction` reaches on the
+// plane of focus; clip distances along the new direction.
+void aimAtFocus(Vec3 pinhole, Vec3 forward, float focusDistance, float nearClip, float farClip, Vec3 origin,
+                Vec3& direction, float& tnear, float& tfar) {
+  const Vec3 focus = pinhole + direction * (focusDistance / dot(direction, forward));
+  direction = normalize(focus - origin);
+  const float cosAxis = dot(direction, forward);
+  tnear = nearClip / cosAxis;
+  tfar = farClip / cosAxis;
+}
+}  // namespace
+
 void Camera::throughLens(float u1, float u2, Vec3& origin, Vec3& direction, float& tnear, float& tfar) const {
   float x, y;
   squareToDisk(u1, u2, x, y);
-  const Vec3 focus = origin_ + direction * (focusDistance_ / dot(direction, forward_));
   origin = origin_ + right_ * (x * apertureRadius_) + up_ * (y * apertureRadius_);
-  direction = normalize(focus - origin);
-  const float cosAxis = dot(direction, forward_);
-  tnear = nearClip_ / cosAxis;
-  tfar = farClip_ / cosAxis;
+  aimAtFocus(origin_, forward_, focusDistance_, nearClip_, farClip_, origin, direction, tnear, tfar);
+}
+
+Camera::Ray Camera::generateRayFrom(Vec3 lensPoint, float filmX, float filmY) const {
+  Ray r = generateRay(filmX, filmY);
+  if (!hasLens()) return r;
+  r.origin = lensPoint;
+  aimAtFocus(origin_, forward_, focusDistance_, nearClip_, farClip_, lensPoint, r.direction, r.tnear, r.tfar);
+  return r;
+}
+
+bool Camera::projectFrom(Vec3 lensPoint, Vec3 p, float& filmX, float& filmY) const {
+  if (!hasLens()) return project(p, filmX, filmY);
+  // Where the ray from the lens point through p meets the plane of focus, seen through the
+  // lens centre (every ray through that point of the plane comes from one film position).
+  const Vec3 d = p - lensPoint;
+  const float along = dot(d, forward_);
+  if (!(along > 0)) return false;
+  return project(lensPoint + d * (focusDistance_ / along), filmX, filmY);
 }
 
 bool Camera::project(Vec3 p, float& filmX, float& filmY) const {

@@ -40,7 +40,7 @@ Color causticContribution(const MeasureContext& c, const PathVertex* path, int n
   if (s < 0) return Color(0.0f);
   const float h = c.film.density(filmX, filmY);
   const PathVertex& v1 = path[1];
-  const Vec3 toEye = c.camera.position() - v1.p;
+  const Vec3 toEye = path[0].p - v1.p;  // the eye: the pinhole, or the chain's lens point
   const float dist2 = dot(toEye, toEye);
   const Vec3 wEye = toEye / std::sqrt(dist2);
   const float cosAxis = c.camera.cosToAxis(-wEye);
@@ -71,7 +71,7 @@ float causticThetaMax(const MeasureContext& c, const CurrentPath& y, float pixel
   if (s < 0) return 0;
   double toSource = 0;
   for (int k = 2; k <= s; ++k) toSource += double(length(y.vertices[k].p - y.vertices[k - 1].p));
-  const double eyeSegment = double(length(y.vertices[1].p - c.camera.position()));
+  const double eyeSegment = double(length(y.vertices[1].p - y.vertices[0].p));
   const double thetaPixels = std::atan(double(pixels) / double(c.camera.pixelsPerPlaneUnit()));
   // At most pi: uniform theta in [0, pi] already covers the sphere of directions; beyond it
   // theta would wrap around and the density 1 / (2 pi theta_max sin theta) would no longer

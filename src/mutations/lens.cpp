@@ -85,7 +85,8 @@ void startAt(const MeasureContext& c, const CurrentPath& y, float fx, float fy, 
     out.reject = kRejectOffFilm;
     return;
   }
-  const Camera::Ray r = c.camera.generateRay(fx, fy);
+  // From the chain's lens point (vertex 0; the pinhole without a lens), which stays fixed.
+  const Camera::Ray r = c.camera.hasLens() ? c.camera.generateRayFrom(y.vertices[0].p, fx, fy) : c.camera.generateRay(fx, fy);
   out.origin = r.origin;
   out.direction = r.direction;
   out.tnear = r.tnear;

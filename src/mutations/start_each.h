@@ -25,6 +25,8 @@ void startEach(MutationKind kind, const ErptStepContext& ctx, const ChainQueue& 
     if (kReadsVertices) {
       unpackSignature(chains.signature[i], n, kinds);
       loadChainPath(chains, chainVertices, i, y);
+    } else if (ctx.measure.camera.hasLens()) {
+      y[0] = loadPathVertex(chainVertices, i * kMaxChainVertices);  // the chain's lens point
     }
     const float filmX = chains.filmX[i], filmY = chains.filmY[i], size = proposals.perturbSize[i];
     const uint64_t key = chains.key[i];

@@ -133,15 +133,16 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
       continue;
     }
     if (connectTo == 0) {
-      // Connect to the eye (rule 5): the film position is where z projects.
+      // Connect to the eye (rule 5), the current path's vertex 0 (the pinhole, or its lens
+      // point, which stays fixed): the film position is where z projects from there.
+      const Vec3 eye = loadPathVertex(chainVertices, i * kMaxChainVertices).p;
       float fx, fy;
-      if (!mc.camera.project(z.p, fx, fy) || !(mc.film.density(fx, fy) > 0)) {
+      if (!mc.camera.projectFrom(eye, z.p, fx, fy) || !(mc.film.density(fx, fy) > 0)) {
         rejectProposal(proposals, rays, i, kRejectOffFilm, k);
         continue;
       }
       proposals.filmX[i] = fx;
       proposals.filmY[i] = fy;
-      const Vec3 eye = mc.camera.position();
       setConnection(shadowRays, i, z, eye, false, normalize(eye - z.p));
     } else if (connectTo > 0) {
       // Connect to the current path's fixed vertex, which stays where it is.

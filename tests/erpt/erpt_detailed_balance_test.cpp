@@ -72,8 +72,8 @@ double thetaMaxOf(const ErptWorld& w, const PathVertex* p, int s, float pixels) 
 // `wantedThroughSpecular`: how many of the reverse moves must regenerate a specular vertex
 // (a walk through the glass or mirror sphere).
 void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, size_t wanted,
-                          size_t wantedThroughSpecular = 0) {
-  ErptWorld w(sceneFile, 48, 4, FilterKind::Tent);
+                          size_t wantedThroughSpecular = 0, test::ThinLens lens = {}) {
+  ErptWorld w(sceneFile, 48, 4, FilterKind::Tent, 1, lens);
   ErptStepContext ctx = w.stepContext(c.strategy);
   ctx.settings.lensShape = c.shape;
   ctx.settings.causticAngle = c.angle;
@@ -122,7 +122,9 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
     back.proposals.filmY[k] = y.filmY[i];
     if (p.walk[i] > 0) {
       back.proposals.cursor[k] = int8_t(p.regenFirst[i]);
-      const Camera::Ray ray = w.camera->generateRay(y.filmX[i], y.filmY[i]);
+      // From y's eye vertex (the pinhole, or the lens point the chain keeps).
+      const Vec3 eye = loadPathVertex(yVertices, i * kMaxChainVertices).p;
+      const Camera::Ray ray = w.camera->generateRayFrom(eye, y.filmX[i], y.filmY[i]);
       setRay(back.rays, k, ray.origin, ray.direction, ray.tnear, ray.tfar);
     } else {
       const int s = p.regenLast[i] + 1;
@@ -148,7 +150,7 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
   step.accept(back, backCounters);
 
   PathVertex py[kMaxChainVertices], pz[kMaxChainVertices];
-  std::vector<double> errors, distances;
+  std::vector<double> errors, distances, eyeAngles;
   size_t invalid = 0, throughSpecular = 0;
   for (size_t k = 0; k < from.size(); ++k) {
     const size_t i = from[k];
@@ -167,6 +169,10 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
         ++throughSpecular;
         break;
       }
+    // z's film position names its eye ray: from vertex 0 (the pinhole or the chain's lens
+    // point) through it, the ray points at vertex 1.
+    const Camera::Ray eyeRay = w.camera->generateRayFrom(pz[0].p, zChains.filmX[k], zChains.filmY[k]);
+    eyeAngles.push_back(double(length(eyeRay.direction - normalize(pz[1].p - pz[0].p))));  // ~ the angle
     const double fy = luminance(contributionFor(c.kind, mc, py, n, y.filmX[i], y.filmY[i]));
     const double fz = luminance(contributionFor(c.kind, mc, pz, n, zChains.filmX[k], zChains.filmY[k]));
     double tYZ = 1, tZY = 1;  // symmetric kinds: the same constant both ways
@@ -194,6 +200,11 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
   std::sort(distances.begin(), distances.end());
   const double d50 = distances[distances.size() / 2], d99 = distances[distances.size() * 99 / 100];
   std::printf("  walk back to y: vertex distance median %.2e, 99%% %.2e, worst %.2e\n", d50, d99, distances.back());
+  std::sort(eyeAngles.begin(), eyeAngles.end());
+  const double a50 = eyeAngles[eyeAngles.size() / 2], a99 = eyeAngles[eyeAngles.size() * 99 / 100];
+  std::printf("  eye ray through z's film position vs its vertex 1: angle median %.2e, 99%% %.2e rad\n", a50, a99);
+  EXPECT_LT(a50, 1e-5) << c.name;  // float rounding of a unit direction
+  EXPECT_LT(a99, 1e-4) << c.name;
   EXPECT_LT(d50, 1e-4) << c.name;  // the ray origins are offset ~4e-5 off the surface
   EXPECT_LT(d99, 1e-3) << c.name;
   // The reverse of a valid move is valid (up to re-tracing at grazing silhouettes), and the
@@ -227,6 +238,13 @@ TEST(ErptDetailedBalance, CausticVeachCornellBox) { checkDetailedBalance(cornell
 // chains in a render): about 200 of the ~3,000 reverse moves here.
 TEST(ErptDetailedBalance, CausticErptThroughGlassAndMirror) { checkDetailedBalance(defaultScene(), kCausticErpt, 300, 100); }
 TEST(ErptDetailedBalance, CausticVeachThroughGlassAndMirror) { checkDetailedBalance(defaultScene(), kCausticVeach, 300, 100); }
+// Through a thin lens (radius 0.3, focused 5.8 away): moves keep the chain's lens point.
+TEST(ErptDetailedBalance, LensSquareThroughAThinLens) {
+  checkDetailedBalance(defaultScene(), kLensSquare, 300, 100, {0.3f, 5.8f});
+}
+TEST(ErptDetailedBalance, CausticErptThroughAThinLens) {
+  checkDetailedBalance(defaultScene(), kCausticErpt, 300, 100, {0.3f, 5.8f});
+}
 
 // PMC-ER's kernel: the mixture over radii 5/10/50 picked by region weights (the family by
 // gamma_caustic 0.9 where the caustic perturbation applies), so a move's T ratio is the chosen

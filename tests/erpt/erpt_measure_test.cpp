@@ -49,7 +49,7 @@ std::optional<WalkEnd> walkToVertex1(const ErptWorld& w, const PathVertex* path,
     if (j == 1) {
       if (m.isPureSpecular()) return std::nullopt;
       float fx, fy;
-      if (!w.camera->project(hit->position, fx, fy)) return std::nullopt;
+      if (!w.camera->projectFrom(path[0].p, hit->position, fx, fy)) return std::nullopt;  // the pinhole or lens point
       return WalkEnd{double(fx), double(fy), normalize(previous - hit->position)};
     }
     Vec3 wo;
@@ -179,6 +179,15 @@ TEST(ErptMeasure, CausticEqualsLensTimesJacobianWithoutSpecularChain) {
 
 TEST(ErptMeasure, CausticEqualsLensTimesJacobianThroughGlassAndMirror) {
   ErptWorld w(test::sourceDir() + "/scenes/default/scene.xml", 64, 4, FilterKind::Box);
+  checkCausticAgainstLens(w, true, 100);
+}
+
+// Through a thin lens (radius 0.3, focused 5.8 away, in front of the spheres): each path keeps
+// its lens point, the lens measure is the film position of rays from it, the caustic's eye
+// connection projects through it. The Jacobian of the caustic's parameters to the film
+// position, measured here, must match cos^3 / plane distance^2 of the lens ray's own angle.
+TEST(ErptMeasure, CausticEqualsLensTimesJacobianThroughAThinLens) {
+  ErptWorld w(test::sourceDir() + "/scenes/default/scene.xml", 64, 4, FilterKind::Box, 1, {0.3f, 5.8f});
   checkCausticAgainstLens(w, true, 100);
 }
 

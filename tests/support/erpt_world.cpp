@@ -6,8 +6,13 @@
 
 namespace erpt::test {
 
-ErptWorld::ErptWorld(const std::string& sceneFile, int size, int spp, FilterKind filterKind, uint64_t seed)
+ErptWorld::ErptWorld(const std::string& sceneFile, int size, int spp, FilterKind filterKind, uint64_t seed,
+                     ThinLens lens)
     : scene(loadScene(sceneFile)), width(size), height(size) {
+  if (lens.radius > 0) {
+    scene.camera.apertureRadius = lens.radius;
+    scene.camera.focusDistance = lens.focusDistance;
+  }
   tracer = std::make_unique<Tracer>(scene);
   camera = std::make_unique<Camera>(scene.camera, width, height);
   filter = std::make_unique<PixelFilter>(filterKind);

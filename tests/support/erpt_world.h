@@ -11,6 +11,11 @@
 
 namespace erpt::test {
 
+// A thin lens to replace a scene's sensor with (radius 0: the scene's own).
+struct ThinLens {
+  float radius = 0, focusDistance = 0;
+};
+
 struct ErptWorld {
   Scene scene;
   int width, height;
@@ -23,7 +28,8 @@ struct ErptWorld {
 
   // Loads `sceneFile` at size x size (filter: `filter`) and path-traces `spp` samples per pixel
   // with seed recording.
-  ErptWorld(const std::string& sceneFile, int size, int spp, FilterKind filter, uint64_t seed = 1);
+  ErptWorld(const std::string& sceneFile, int size, int spp, FilterKind filter, uint64_t seed = 1,
+            ThinLens lens = {});
   MeasureContext measure() const { return {scene, *lights, *camera, *density}; }
   ErptStepContext stepContext(MutationStrategy strategy) const;
   // The seed's path as PathVertex values.
