@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs every build and test dependency from Debian 12 packages. Idempotent: installs
-# only what is missing, so it is cheap to run before every build.
+# only what is missing, so it is cheap to run before every build. Extra packages may be
+# named as arguments (scripts/fuzz.sh adds clang and libFuzzer).
 set -euo pipefail
 
 packages=(
@@ -8,6 +9,7 @@ packages=(
   libembree-dev libtbb-dev libopenimageio-dev libopenexr-dev libpng-dev libxsimd-dev
   libpugixml-dev libtinyobjloader-dev libcli11-dev zlib1g-dev
   libgtest-dev libbenchmark-dev
+  "$@"
 )
 
 missing=()

@@ -58,6 +58,11 @@ MeshData readObj(const std::string& path, bool flipV, Warnings& warnings) {
       }
       if (idx.vertex_index < 0 || size_t(idx.vertex_index) * 3 + 2 >= attrib.vertices.size())
         throw InputError({path, 0}, "face refers to a vertex that does not exist");
+      // (tinyobjloader leaves normal and uv indices unchecked; found by tests/fuzz.)
+      if (idx.normal_index >= 0 && size_t(idx.normal_index) * 3 + 2 >= attrib.normals.size())
+        throw InputError({path, 0}, "face refers to a normal that does not exist");
+      if (idx.texcoord_index >= 0 && size_t(idx.texcoord_index) * 2 + 1 >= attrib.texcoords.size())
+        throw InputError({path, 0}, "face refers to a texture coordinate that does not exist");
       uint32_t id = uint32_t(mesh.positions.size());
       remap.emplace(key, id);
       mesh.indices.push_back(id);

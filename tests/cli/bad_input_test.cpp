@@ -106,6 +106,15 @@ const BadCase kCases[] = {
      "<scene version=\"3.0.0\">\n  <shape type=\"obj\">\n    <string name=\"filename\" value=\"m.obj\"/>\n  "
      "</shape>\n</scene>\n",
      "m.obj=v 0 0 0\nv 1 0 0\nv 0 1e999 0\nf 1 2 3\n", "", 0, "m.obj:3", "non-finite vertex position"},
+    // Found by tests/fuzz: indices past the normals (or uvs) read out of bounds.
+    {"ObjNormalIndexOutOfRange",
+     "<scene version=\"3.0.0\">\n  <shape type=\"obj\">\n    <string name=\"filename\" value=\"m.obj\"/>\n  "
+     "</shape>\n</scene>\n",
+     "m.obj=v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//7\n", "", 0, "m.obj", "normal that does not exist"},
+    {"ObjUvIndexOutOfRange",
+     "<scene version=\"3.0.0\">\n  <shape type=\"obj\">\n    <string name=\"filename\" value=\"m.obj\"/>\n  "
+     "</shape>\n</scene>\n",
+     "m.obj=v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n", "", 0, "m.obj", "texture coordinate that does not exist"},
     {"BadDefineOnCommandLine", "<scene version=\"3.0.0\">\n  <shape type=\"cube\"/>\n</scene>\n", nullptr, "-D novalue",
      -1, nullptr, "-D expects name=value"},
 };
