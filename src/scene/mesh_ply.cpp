@@ -344,6 +344,9 @@ void skipProperty(Source& src, const PlyProperty& property) {
 
 template <class Source>
 void skipElement(Source& src, const PlyElement& element) {
+  // An element without properties holds no data, whatever its count (a huge count would
+  // otherwise spin here; found by tests/fuzz).
+  if (element.properties.empty()) return;
   for (uint64_t i = 0; i < element.count; ++i)
     for (const PlyProperty& property : element.properties) skipProperty(src, property);
 }
