@@ -135,7 +135,7 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
     if (connectTo == 0) {
       // Connect to the eye (rule 5), the current path's vertex 0 (the pinhole, or its lens
       // point, which stays fixed): the film position is where z projects from there.
-      const Vec3 eye = loadPathVertex(chainVertices, i * kMaxChainVertices).p;
+      const Vec3 eye = chainVertices.pAt(i * kMaxChainVertices);
       float fx, fy;
       if (!mc.camera.projectFrom(eye, z.p, fx, fy) || !(mc.film.density(fx, fy) > 0)) {
         rejectProposal(proposals, rays, i, kRejectOffFilm, k);

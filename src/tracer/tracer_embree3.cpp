@@ -68,9 +68,8 @@ void attachSpheres(RTCDevice device, RTCScene scene, const SphereSet& spheres) {
 
 void rejectCutOutHits(const RTCFilterFunctionNArguments* args);
 
-// Triangles `first` .. first + count - 1 of `mesh` as one Embree triangle geometry of `scene`.
-// `mesh`'s vertices as Embree reads them: x, y, z and a pad, one vertex more than the mesh
-// has (Embree may read 16 bytes from the last vertex).
+// `mesh`'s vertices as Embree reads them: x, y, z and a pad. (Embree may read 16 bytes from
+// the last vertex: its own buffers are padded for that, a shared one needs a spare vertex.)
 void fillVertices(const TriangleSoup& mesh, float* vertices) {
   for (size_t i = 0; i < mesh.vertexCount(); ++i) {
     vertices[4 * i] = mesh.px[i];
