@@ -1,16 +1,28 @@
 #!/usr/bin/env bash
 # Installs, builds as needed, and runs every test: the Release build, then the same suite
 # under AddressSanitizer + UndefinedBehaviorSanitizer (skip that with --release-only).
+# Prints the time each step took at the end.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh
-(cd build && ctest --output-on-failure -j2)
+timings=()
+step() {  # step NAME COMMAND...: runs the command and records its wall time
+  local name=$1 start=$SECONDS
+  shift
+  "$@"
+  timings+=("$(printf '%-22s %4d s' "$name" $((SECONDS - start)))")
+}
+report() { printf '\ntime per step:\n'; printf '  %s\n' "${timings[@]}"; }
+trap report EXIT
+
+step "release build" bash scripts/build.sh
+step "release tests" bash -c 'cd build && ctest --output-on-failure -j2'
 if [ "${1:-}" != "--release-only" ]; then
-  bash scripts/build.sh --sanitize
+  step "sanitizer build" bash scripts/build.sh --sanitize
   # Leaks are checked too; tests/lsan.supp lists the third-party ones we cannot fix. The long
   # statistical renders of ERPT, PMC-ER, the splatting films and exact-vs-tessellated spheres
   # run in the Release suite only (their code paths are covered by the stage, measure,
   # determinism, closed-form and CLI tests here).
-  (cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 LSAN_OPTIONS=suppressions="$PWD/../tests/lsan.supp" \
-    ctest --output-on-failure -j2 -E '^Statistical(Erpt|Pmc|Film)\.|^StatisticalExactSphere\.ExactAndTessellated')
+  step "sanitizer tests" bash -c 'cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 \
+    LSAN_OPTIONS=suppressions="$PWD/../tests/lsan.supp" ctest --output-on-failure -j2 \
+    -E "^Statistical(Erpt|Pmc|Film)\.|^StatisticalExactSphere\.ExactAndTessellated"'
 fi

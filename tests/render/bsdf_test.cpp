@@ -7,6 +7,7 @@
 #include <cmath>
 #include <complex>
 #include <cstdio>
+#include <functional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -188,9 +189,11 @@ double referenceFresnelConductor(double cosI, double eta, double k) {
 // ---------------------------------------------------------------------------------------
 // Sampling matches the pdf (chi-square), and sample() agrees with eval() and pdf()
 
+// The material is built when the test runs: every test process registers all cases, and
+// finalizing a rough plastic tabulates its coat (~30 ms; a third of a second for the list).
 struct SamplingCase {
   std::string name;
-  Material material;
+  std::function<Material()> material;
   Vec3 wi;
   int thetaBins = 48;  // phi gets twice as many: square-ish cells near the equator
   // Sub-cells per bin side for the pdf's integral: the rough dielectric's refraction peak
@@ -204,7 +207,7 @@ void PrintTo(const SamplingCase& c, std::ostream* os) { *os << c.name; }
 std::vector<SamplingCase> samplingCases() {
   std::vector<SamplingCase> cases;
   for (float theta : {30.0f, 80.0f})
-    cases.push_back({"Diffuse_wi" + numberTag(theta), diffuse(), direction(theta)});
+    cases.push_back({"Diffuse_wi" + numberTag(theta), [] { return diffuse(); }, direction(theta)});
 
   for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
     for (float alpha : {0.1f, 0.3f, 0.7f}) {
@@ -217,21 +220,21 @@ std::vector<SamplingCase> samplingCases() {
       for (float theta : thetas)
         cases.push_back({std::string("RoughConductor_") + distributionName(dist) + "_a" + numberTag(alpha) +
                              "_wi" + numberTag(theta),
-                         roughConductor(dist, alpha), direction(theta), bins});
+                         [=] { return roughConductor(dist, alpha); }, direction(theta), bins});
     }
   }
 
   // Plastic: only the diffuse part has a pdf; the coat's Dirac samples are missing mass,
   // whose frequency must equal 1 - (integral of the pdf).
   for (float theta : {20.0f, 70.0f, 85.0f})
-    cases.push_back({"Plastic_wi" + numberTag(theta), plastic(), direction(theta)});
+    cases.push_back({"Plastic_wi" + numberTag(theta), [] { return plastic(); }, direction(theta)});
 
   for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX})
     for (float alpha : {0.15f, 0.5f})
       for (float theta : {30.0f, 80.0f})
         cases.push_back({std::string("RoughPlastic_") + distributionName(dist) + "_a" + numberTag(alpha) + "_wi" +
                              numberTag(theta),
-                         roughPlastic(dist, alpha), direction(theta), alpha < 0.2f ? 96 : 48});
+                         [=] { return roughPlastic(dist, alpha); }, direction(theta), alpha < 0.2f ? 96 : 48});
 
   // Rough dielectric: reflection and refraction both have densities (none is Dirac), from
   // outside and from inside the medium (beyond the critical angle: all reflection).
@@ -240,7 +243,7 @@ std::vector<SamplingCase> samplingCases() {
       for (float theta : {20.0f, 70.0f, 150.0f, 165.0f})
         cases.push_back({std::string("RoughDielectric_") + distributionName(dist) + "_a" + numberTag(alpha) + "_wi" +
                              numberTag(theta),
-                         roughDielectric(dist, alpha), direction(theta), alpha < 0.2f ? 96 : 48, 24});
+                         [=] { return roughDielectric(dist, alpha); }, direction(theta), alpha < 0.2f ? 96 : 48, 24});
 
   // Phong (Mitsuba 0.6): diffuse plus a cos^n lobe around the mirror direction, cut by the
   // horizon at grazing incidence. The narrow n = 400 lobe (~0.05 rad) would sit in the polar
@@ -248,7 +251,7 @@ std::vector<SamplingCase> samplingCases() {
   for (float exponent : {3.0f, 40.0f, 400.0f})
     for (float theta : {0.0f, 45.0f, 80.0f})
       if (exponent < 100 || theta > 0)
-        cases.push_back({"Phong_n" + numberTag(exponent) + "_wi" + numberTag(theta), phong(exponent), direction(theta),
+        cases.push_back({"Phong_n" + numberTag(exponent) + "_wi" + numberTag(theta), [=] { return phong(exponent); }, direction(theta),
                          exponent > 100 ? 96 : 48, exponent > 100 ? 24 : 8});
 
   // Anisotropic rough conductors (alpha_u along x, alpha_v along y), seen from azimuths along,
@@ -257,12 +260,15 @@ std::vector<SamplingCase> samplingCases() {
     for (auto [theta, phi] : {std::pair{0.0f, 0.0f}, {40.0f, 0.0f}, {40.0f, 90.0f}, {70.0f, 35.0f}})
       cases.push_back({std::string("AnisotropicConductor_") + distributionName(dist) + "_a0p08x0p4_wi" + numberTag(theta) +
                            "_phi" + numberTag(phi),
-                       anisotropicConductor(dist, 0.08f, 0.4f), direction(theta, phi), 96});
+                       [=] { return anisotropicConductor(dist, 0.08f, 0.4f); }, direction(theta, phi), 96});
 
   // Anisotropic rough glass: reflection and refraction with the elliptical distribution.
   for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
-    Material glass = roughDielectric(dist, 0.1f);
-    glass.alphaV = 0.35f;
+    auto glass = [=] {
+      Material m = roughDielectric(dist, 0.1f);
+      m.alphaV = 0.35f;
+      return m;
+    };
     for (float theta : {30.0f, 160.0f})
       cases.push_back({std::string("AnisotropicDielectric_") + distributionName(dist) + "_a0p1x0p35_wi" + numberTag(theta),
                        glass, direction(theta, 40.0f), 96, 24});
@@ -273,30 +279,32 @@ std::vector<SamplingCase> samplingCases() {
   for (WardVariant v : {WardVariant::Ward, WardVariant::WardDuer, WardVariant::Balanced})
     for (auto [theta, phi] : {std::pair{20.0f, 0.0f}, {65.0f, 50.0f}}) {
       cases.push_back({std::string("Ward") + wardName(v) + "_a0p15x0p15_wi" + numberTag(theta) + "_phi" + numberTag(phi),
-                       ward(v, 0.15f, 0.15f), direction(theta, phi), 96});
+                       [=] { return ward(v, 0.15f, 0.15f); }, direction(theta, phi), 96});
       cases.push_back({std::string("Ward") + wardName(v) + "_a0p08x0p3_wi" + numberTag(theta) + "_phi" + numberTag(phi),
-                       ward(v, 0.08f, 0.3f), direction(theta, phi), 96});
+                       [=] { return ward(v, 0.08f, 0.3f); }, direction(theta, phi), 96});
     }
 
   // blendbsdf: the mixture's density over both parts' smooth lobes; a Dirac part (the mirror)
   // is missing mass in proportion to its weight.
   for (float theta : {30.0f, 75.0f}) {
     cases.push_back({"BlendDiffuseRoughConductor_w0p3_wi" + numberTag(theta),
-                     blend(diffuse(), roughConductor(MicrofacetKind::GGX, 0.2f), 0.3f), direction(theta), 96});
+                     [] { return blend(diffuse(), roughConductor(MicrofacetKind::GGX, 0.2f), 0.3f); }, direction(theta), 96});
     cases.push_back({"BlendPhongMirror_w0p6_wi" + numberTag(theta),
-                     blend(phong(40.0f), conductor(kGoldEta, kGoldK), 0.6f), direction(theta)});
+                     [] { return blend(phong(40.0f), conductor(kGoldEta, kGoldK), 0.6f); }, direction(theta)});
   }
   cases.push_back({"BlendRoughPlasticRoughDielectric_w0p5_wi40",
-                   blend(roughPlastic(MicrofacetKind::Beckmann, 0.3f), roughDielectric(MicrofacetKind::GGX, 0.3f), 0.5f),
+                   [] {
+                     return blend(roughPlastic(MicrofacetKind::Beckmann, 0.3f), roughDielectric(MicrofacetKind::GGX, 0.3f), 0.5f);
+                   },
                    direction(40.0f), 48, 24});
 
   // Two-sided materials hit from the back: everything must happen in the lower hemisphere.
   for (float theta : {120.0f, 170.0f})
-    cases.push_back({"TwoSidedDiffuseBack_wi" + numberTag(theta), diffuse(Color(0.5f), true), direction(theta)});
+    cases.push_back({"TwoSidedDiffuseBack_wi" + numberTag(theta), [] { return diffuse(Color(0.5f), true); }, direction(theta)});
   cases.push_back({"TwoSidedRoughConductorBack_GGX_a0p3_wi130",
-                   roughConductor(MicrofacetKind::GGX, 0.3f, kGoldEta, kGoldK, true), direction(130.0f)});
+                   [] { return roughConductor(MicrofacetKind::GGX, 0.3f, kGoldEta, kGoldK, true); }, direction(130.0f)});
   cases.push_back({"TwoSidedRoughPlasticBack_Beckmann_a0p3_wi150",
-                   roughPlastic(MicrofacetKind::Beckmann, 0.3f, Color(0.5f), false, true), direction(150.0f)});
+                   [] { return roughPlastic(MicrofacetKind::Beckmann, 0.3f, Color(0.5f), false, true); }, direction(150.0f)});
   return cases;
 }
 
@@ -304,16 +312,17 @@ class BsdfSamplingTest : public ::testing::TestWithParam<SamplingCase> {};
 
 TEST_P(BsdfSamplingTest, SampledDirectionsFollowPdf) {
   const SamplingCase& tc = GetParam();
-  const SurfaceColors colors = colorsOf(tc.material);
+  const Material material = tc.material();
+  const SurfaceColors colors = colorsOf(material);
   auto sampler = [&](uint64_t i, Vec3& dir) {
     BsdfSample s;
-    if (!bsdfSample(tc.material, colors, tc.wi, testUniform(i, 0), testUniform(i, 1), testUniform(i, 2), s))
+    if (!bsdfSample(material, colors, tc.wi, testUniform(i, 0), testUniform(i, 1), testUniform(i, 2), s))
       return false;
     if (s.delta) return false;  // Dirac lobes have no density: they are the missing mass
     dir = s.wo;
     return true;
   };
-  auto pdf = [&](Vec3 wo) { return bsdfPdf(tc.material, colors, tc.wi, wo); };
+  auto pdf = [&](Vec3 wo) { return bsdfPdf(material, colors, tc.wi, wo); };
   test::ChiSquareResult r =
       test::chiSquareTest(sampler, pdf, tc.thetaBins, 2 * tc.thetaBins, kChiSquareSamples, tc.subdivisions);
   RecordProperty("pValue", std::to_string(r.pValue));
@@ -323,18 +332,19 @@ TEST_P(BsdfSamplingTest, SampledDirectionsFollowPdf) {
 
 TEST_P(BsdfSamplingTest, SampleAgreesWithEvalAndPdf) {
   const SamplingCase& tc = GetParam();
-  const SurfaceColors colors = colorsOf(tc.material);
+  const Material material = tc.material();
+  const SurfaceColors colors = colorsOf(material);
   int checked = 0, pdfMismatches = 0, weightMismatches = 0;
   std::string firstMismatch;
   for (uint64_t i = 0; i < 20000; ++i) {
     BsdfSample s;
-    if (!bsdfSample(tc.material, colors, tc.wi, testUniform(i, 0, 7), testUniform(i, 1, 7), testUniform(i, 2, 7),
+    if (!bsdfSample(material, colors, tc.wi, testUniform(i, 0, 7), testUniform(i, 1, 7), testUniform(i, 2, 7),
                     s) ||
         s.delta)
       continue;
     ++checked;
-    float pdf = bsdfPdf(tc.material, colors, tc.wi, s.wo);
-    Color f = bsdfEval(tc.material, colors, tc.wi, s.wo);
+    float pdf = bsdfPdf(material, colors, tc.wi, s.wo);
+    Color f = bsdfEval(material, colors, tc.wi, s.wo);
     bool pdfOk = closeRelative(s.pdf, pdf, 1e-3);
     bool weightOk = pdf > 0;
     for (int ch = 0; ch < 3 && weightOk; ++ch) weightOk = closeRelative(s.weight[ch], f[ch] / pdf, 1e-3);
