@@ -6,7 +6,9 @@
 #include <list>
 #include <map>
 #include <memory>
+#include <optional>
 
+#include "erpt/image_io.h"
 #include "erpt/mesh_io.h"
 #include "erpt/scene_loader.h"
 #include "xml_document.h"
@@ -48,6 +50,10 @@ class SceneBuilder {
   int shadingMapTexture(const Document& doc, const Properties& props, const std::vector<pugi::xml_node>& children);
   // An `envmap`'s image, read, decoded and turned into the sampling tables.
   std::shared_ptr<const EnvironmentMap> environmentMap(const Document& doc, Properties& props, const SourceLocation& where);
+  // `sky`, `sun` and `sunsky` (xml_daylight.cpp): adds the environment emitter they are drawn
+  // into (or adds them to an earlier daylight emitter's map), and for a sun radius scale of 0
+  // a directional light; returns the emitter's index.
+  int daylight(const std::string& type, Properties& props, const SourceLocation& where);
   int bsdf(const Document& doc, const pugi::xml_node& node);
   int texture(const Document& doc, const pugi::xml_node& node);
 
@@ -78,6 +84,12 @@ class SceneBuilder {
   std::map<std::string, int> materialIds_, textureIds_;
   std::map<std::string, pugi::xml_node> shapeGroups_;
   std::map<std::string, GroupPlan> groupPlans_;  // by shapegroup id, once it is instanced
+  struct Daylight {
+    RgbImage image;  // the sky and sun drawn so far, in the sky frame
+    Transform toWorld;
+    int emitter;     // the environment emitter showing them
+  };
+  std::optional<Daylight> daylight_;
   std::map<std::string, MeshData> instanceMeshes_;  // mesh files of shapegroup members, by file and options
   int defaultMaterial_ = -1;
   bool sawSensor_ = false;

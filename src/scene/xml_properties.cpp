@@ -1,6 +1,9 @@
 #include "xml_properties.h"
 
+#include <algorithm>
 #include <cctype>
+
+#include "erpt/spectrum.h"
 
 namespace erpt::xml {
 
@@ -115,44 +118,19 @@ Color srgbToLinear(Color c) {
   return out;
 }
 
-namespace {
-
-// Piecewise Gaussian lobes of the analytic CIE 1931 fit by Wyman, Sloan and Shirley (2013).
-double lobe(double x, double mu, double s1, double s2) {
-  double t = (x - mu) / (x < mu ? s1 : s2);
-  return std::exp(-0.5 * t * t);
-}
-
-Color xyzToLinearSrgb(double X, double Y, double Z) {
-  return {float(3.2404542 * X - 1.5371385 * Y - 0.4985314 * Z), float(-0.9692660 * X + 1.8760108 * Y + 0.0415560 * Z),
-          float(0.0556434 * X - 0.2040259 * Y + 1.0572252 * Z)};
-}
-
-Color integrateSpectrum(const std::vector<std::pair<double, double>>& s) {
-  double X = 0, Y = 0, Z = 0;
-  for (double w = 360; w <= 830; w += 1) {
-    double v = 0;
-    if (s.size() == 1) {
-      v = s[0].second;
-    } else if (w >= s.front().first && w <= s.back().first) {
-      size_t i = 1;
-      while (i + 1 < s.size() && s[i].first < w) ++i;
-      double t = (w - s[i - 1].first) / std::max(1e-9, s[i].first - s[i - 1].first);
-      v = s[i - 1].second * (1 - t) + s[i].second * t;
-    }
-    X += v * (1.056 * lobe(w, 599.8, 37.9, 31.0) + 0.362 * lobe(w, 442.0, 16.0, 26.7) - 0.065 * lobe(w, 501.1, 20.4, 26.2));
-    Y += v * (0.821 * lobe(w, 568.8, 46.9, 40.5) + 0.286 * lobe(w, 530.9, 16.3, 31.1));
-    Z += v * (1.217 * lobe(w, 437.0, 11.8, 36.0) + 0.681 * lobe(w, 459.0, 26.0, 13.8));
-  }
-  return xyzToLinearSrgb(X, Y, Z);
-}
-
-}  // namespace
-
-Color spectrumToRgb(const std::vector<std::pair<double, double>>& samples) {
+Color spectrumToRgb(const std::vector<std::pair<double, double>>& s) {
+  // Linear between the samples, zero outside them; a single sample is a flat spectrum.
+  auto value = [&](double w) {
+    if (s.size() == 1) return s[0].second;
+    if (w < s.front().first || w > s.back().first) return 0.0;
+    size_t i = 1;
+    while (i + 1 < s.size() && s[i].first < w) ++i;
+    double t = (w - s[i - 1].first) / std::max(1e-9, s[i].first - s[i - 1].first);
+    return s[i - 1].second * (1 - t) + s[i].second * t;
+  };
   // Normalizing by the equal-energy spectrum's RGB makes flat spectra exactly grey.
-  static const Color white = integrateSpectrum({{0.0, 1.0}});
-  return integrateSpectrum(samples) / white;
+  static const Color white = spectrumToLinearRgb([](double) { return 1.0; });
+  return spectrumToLinearRgb(value) / white;
 }
 
 Color parseColorValue(const Property& p) {

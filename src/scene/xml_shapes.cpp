@@ -358,6 +358,9 @@ int SceneBuilder::emitter(const Document& doc, const pugi::xml_node& node, int s
     e.kind = EmitterKind::Constant;
     e.map = environmentMap(doc, props, where);
     e.radiance = e.map->mean();
+  } else if (type == "sky" || type == "sun" || type == "sunsky") {
+    if (shape >= 0) throw InputError(where, "a " + type + " emitter cannot be attached to a shape");
+    return daylight(type, props, where);
   } else {
     scene_.warnings.add(where, "emitter '" + type + "' is not supported; ignored");
     return -1;

@@ -34,6 +34,27 @@ const BadCase kCases[] = {
      "<scene version=\"3.0.0\">\n<shape type=\"cube\"><bsdf type=\"diffuse\">\n<texture type=\"bitmap\" "
      "name=\"reflectance\">\n<string name=\"filename\" value=\"missing.png\"/>\n</texture></bsdf></shape>\n</scene>\n",
      nullptr, "", 4, nullptr, "not found"},
+    {"SkyTurbidityOutOfRange",
+     "<scene version=\"0.6.0\">\n  <shape type=\"cube\"/>\n  <emitter type=\"sky\">\n"
+     "    <float name=\"turbidity\" value=\"11\"/>\n  </emitter>\n</scene>\n",
+     nullptr, "", 3, nullptr, "turbidity must be in [1, 10]"},
+    {"SkySunBelowTheHorizon",
+     "<scene version=\"0.6.0\">\n  <shape type=\"cube\"/>\n  <emitter type=\"sky\">\n"
+     "    <vector name=\"sunDirection\" x=\"0\" y=\"-1\" z=\"0.2\"/>\n  </emitter>\n</scene>\n",
+     nullptr, "", 3, nullptr, "below the horizon"},
+    {"SkySunDirectionAndTimeTogether",
+     "<scene version=\"0.6.0\">\n  <shape type=\"cube\"/>\n  <emitter type=\"sky\">\n"
+     "    <vector name=\"sunDirection\" x=\"0\" y=\"1\" z=\"0\"/>\n    <float name=\"hour\" value=\"9\"/>\n"
+     "  </emitter>\n</scene>\n",
+     nullptr, "", 3, nullptr, "not both"},
+    {"SunskyAbsurdResolution",
+     "<scene version=\"0.6.0\">\n  <shape type=\"cube\"/>\n  <emitter type=\"sunsky\">\n"
+     "    <integer name=\"resolution\" value=\"1000000\"/>\n  </emitter>\n</scene>\n",
+     nullptr, "", 3, nullptr, "resolution must be in [2, 8192]"},
+    {"SunNegativeRadiusScale",
+     "<scene version=\"0.6.0\">\n  <shape type=\"cube\"/>\n  <emitter type=\"sun\">\n"
+     "    <float name=\"sunRadiusScale\" value=\"-1\"/>\n  </emitter>\n</scene>\n",
+     nullptr, "", 3, nullptr, "sun_radius_scale must be in [0, 100]"},
     {"MissingEnvironmentMap",
      "<scene version=\"3.0.0\">\n  <shape type=\"cube\"/>\n  <emitter type=\"envmap\">\n"
      "    <string name=\"filename\" value=\"sky.exr\"/>\n  </emitter>\n</scene>\n",
@@ -206,12 +227,12 @@ TEST(BadInputCli, AbsurdPmcOptionsAreRejected) {
 TEST(BadInputCli, UnsupportedPluginIsAWarningNotAnError) {
   TempDir dir;
   std::string scene = dir.write("s.xml",
-                                "<scene version=\"3.0.0\">\n<shape type=\"cube\"/>\n<emitter type=\"sunsky\"/>\n"
+                                "<scene version=\"3.0.0\">\n<shape type=\"cube\"/>\n<emitter type=\"collimated\"/>\n"
                                 "<sensor type=\"perspective\"><film type=\"hdrfilm\"><integer name=\"width\" value=\"8\"/>"
                                 "<integer name=\"height\" value=\"8\"/></film></sensor>\n</scene>\n");
   test::CommandResult r = test::runCli("render -q " + scene + " -o " + dir.file("o.exr") + " --spp 1");
   EXPECT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NE(r.output.find(scene + ":3: warning: emitter 'sunsky' is not supported"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(scene + ":3: warning: emitter 'collimated' is not supported"), std::string::npos) << r.output;
   EXPECT_TRUE(std::filesystem::exists(dir.file("o.exr")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("o.png")));
 }

@@ -139,6 +139,23 @@ TEST(StatisticalErpt, EnvironmentMapSunCausticMatchesPathTracerBlockByBlock) {
   expectErptMatchesPathTracerBlockByBlock(scene, 16, everyPathByErpt(200), 13000);
 }
 
+// Lit by Mitsuba 0.6's `sky` (the Hosek-Wilkie model drawn into an environment map): its bright
+// circumsolar region focuses through the glass sphere onto the floor.
+TEST(StatisticalErpt, SkyLitGlassMatchesPathTracerBlockByBlock) {
+  test::TempDir dir;
+  const Scene scene = loadScene(test::writeSkyGlassScene(dir));
+  ASSERT_TRUE(scene.environment() && scene.environment()->map);
+  expectErptMatchesPathTracerBlockByBlock(scene, 16, everyPathByErpt(200), 17000);
+}
+
+// Under Mitsuba 0.6's `sunsky`, the ERPT paper's own test: a caustic cast by the sun through glass.
+TEST(StatisticalErpt, SunskyCausticThroughGlassMatchesPathTracerBlockByBlock) {
+  test::TempDir dir;
+  const Scene scene = loadScene(test::writeSunskyGlassScene(dir));
+  ASSERT_TRUE(scene.environment() && scene.environment()->map);
+  expectErptMatchesPathTracerBlockByBlock(scene, 16, everyPathByErpt(200), 19000);
+}
+
 // A `mask` cut-out (an Embree intersection filter): chains move through the holes and along
 // the patterned shadow; every traced and connecting segment must see the same cut-outs.
 TEST(StatisticalErpt, MaskCutOutMatchesPathTracerBlockByBlock) {

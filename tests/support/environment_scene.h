@@ -14,5 +14,13 @@ namespace erpt::test {
 RgbImage skyImage(bool withSun = true);
 // Writes sky.exr and scene.xml (64x64 film, box filter) into `dir`; returns the scene's path.
 std::string writeEnvmapGlassScene(const TempDir& dir);
+// The sphere under Mitsuba 0.6's `sky` (turbidity 2.5, the sun 33 degrees up, behind the
+// sphere as seen from the camera, so that its caustic falls towards it), on a floor that
+// reaches to the top of the image (the sky is black below the horizon).
+std::string writeSkyGlassScene(const TempDir& dir);
+// The same under `sunsky`: the sky plus the sun drawn 25 times as wide (6.7 degrees; the same
+// power), scaled to 1/5 so that its irradiance is about twice the sky's. Its caustic is a bright patch on
+// the floor, found by the path tracer only through BSDF samples that hit the disk.
+std::string writeSunskyGlassScene(const TempDir& dir);
 
 }  // namespace erpt::test
