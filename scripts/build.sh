@@ -1,12 +1,16 @@
 #!/usr/bin/env bash
 # Installs dependencies if needed and builds. Usage: scripts/build.sh [--sanitize]
-#   (default: Release in build/; --sanitize: Debug + ASan + UBSan in build-sanitize/)
+#   (default: Release in build/ with g++; --sanitize: Debug + ASan + UBSan with clang in
+#   build-sanitize/, with the fuzz targets built for libFuzzer)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 if [ "${1:-}" = "--sanitize" ]; then
+  # clang, so that the same build also makes the libFuzzer targets the suite runs.
+  bash scripts/setup.sh clang libclang-rt-14-dev
   dir=build-sanitize
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DERPT_SANITIZE=ON -DERPT_BUILD_BENCHMARKS=OFF >/dev/null
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DERPT_SANITIZE=ON -DERPT_BUILD_BENCHMARKS=OFF \
+    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DERPT_LIBFUZZER=ON >/dev/null
 else
   dir=build
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
