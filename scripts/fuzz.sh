@@ -4,8 +4,7 @@
 # target, default 60] [targets..., default: scene_xml obj ply serialized]
 # Builds in build-fuzz/ (clang); each target starts from tests/fuzz/corpus/<target> and keeps
 # what it learns in build-fuzz/corpus/<target>; a crashing input is written to build-fuzz/
-# (crash-*) and the script fails. The test suite runs the same targets over their corpus and
-# fixed mutations without clang (tests/fuzz/fuzz_driver.cpp).
+# (crash-*) and the script fails. The sanitizer suite runs each target for 60 s the same way.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
