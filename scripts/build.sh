@@ -6,8 +6,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 if [ "${1:-}" = "--sanitize" ]; then
-  # clang, so that the same build also makes the libFuzzer targets the suite runs.
-  bash scripts/setup.sh clang libclang-rt-14-dev
+  # clang, so that the same build also makes the libFuzzer targets the suite runs; llvm brings
+  # llvm-symbolizer, without which clang's sanitizers print no function names (and the leak
+  # suppressions in tests/lsan.supp, which match them, cannot apply).
+  bash scripts/setup.sh clang libclang-rt-14-dev llvm
   dir=build-sanitize
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DERPT_SANITIZE=ON -DERPT_BUILD_BENCHMARKS=OFF \
     -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DERPT_LIBFUZZER=ON >/dev/null
