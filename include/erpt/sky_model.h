@@ -40,6 +40,10 @@ struct SkySettings {
   float scale = 1;
 };
 
+// Throws std::invalid_argument naming the first setting outside its range (turbidity 1-10,
+// albedo 0-1, stretch 1-2, resolution 2-8192, a finite scale >= 0, the sun above the horizon).
+void checkSkySettings(const SkySettings& settings);
+
 // The sky drawn into a latitude-longitude image of resolution x resolution / 2 pixels, each
 // pixel holding the radiance along its centre's direction (Mitsuba 0.6 does the same and then
 // renders an `envmap`).

@@ -83,10 +83,15 @@ Color HosekWilkieSky::radiance(double theta, double phi) const {
   return out;
 }
 
-RgbImage rasterizeSky(const SkySettings& s) {
+void checkSkySettings(const SkySettings& s) {
   if (!(s.stretch >= 1 && s.stretch <= 2)) throw std::invalid_argument("stretch must be in [1, 2]");
   if (s.resolution < 2 || s.resolution > 8192) throw std::invalid_argument("resolution must be in [2, 8192]");
   if (!(s.scale >= 0) || !std::isfinite(s.scale)) throw std::invalid_argument("scale must be a finite number >= 0");
+  HosekWilkieSky(s.turbidity, s.albedo, s.sun);  // turbidity, albedo and the sun's height
+}
+
+RgbImage rasterizeSky(const SkySettings& s) {
+  checkSkySettings(s);
   const HosekWilkieSky sky(s.turbidity, s.albedo, s.sun);
   RgbImage image;
   image.width = s.resolution;

@@ -78,18 +78,12 @@ int SceneBuilder::daylight(const std::string& type, Properties& props, const Sou
 
   RgbImage image;
   try {
-    if (!(sky.stretch >= 1 && sky.stretch <= 2)) throw std::invalid_argument("stretch must be in [1, 2]");
+    checkSkySettings(sky);  // a lone sun needs the same turbidity, sun height and resolution
     if (!(radiusScale >= 0 && radiusScale <= 100)) throw std::invalid_argument("sun_radius_scale must be in [0, 100]");
-    if (!(sunScale >= 0) || !std::isfinite(sunScale) || !(sky.scale >= 0) || !std::isfinite(sky.scale))
-      throw std::invalid_argument("the scales must be finite numbers >= 0");
-    if (!(sky.turbidity >= 1 && sky.turbidity <= 10))
-      throw std::invalid_argument("turbidity must be in [1, 10], got " + std::to_string(sky.turbidity));
-    if (!(sky.sun.zenith < 3.14159265358979 / 2))
-      throw std::invalid_argument("the sun is below the horizon: the daylight models have no night sky");
+    if (!(sunScale >= 0) || !std::isfinite(sunScale)) throw std::invalid_argument("the scales must be finite numbers >= 0");
     if (hasSky) {
       image = rasterizeSky(sky);
     } else {
-      if (sky.resolution < 2 || sky.resolution > 8192) throw std::invalid_argument("resolution must be in [2, 8192]");
       image.width = sky.resolution;
       image.height = sky.resolution / 2;
       image.pixels.assign(size_t(image.width) * image.height, Color(0.0f));

@@ -942,7 +942,7 @@ double integrateHemisphere(int nTheta, int nPhi, F&& f) {
 TEST(Microfacet, AnisotropicDistributionsAreNormalizedAndRotateWithTheirAxes) {
   const int nTheta = 4000, nPhi = 512;
   for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
-    for (const std::pair<float, float> alphas : {std::pair{0.1f, 0.4f}, {0.6f, 0.2f}}) {
+    for (const std::pair<float, float>& alphas : {std::pair{0.1f, 0.4f}, {0.6f, 0.2f}}) {
       const float ax = alphas.first, ay = alphas.second;  // (lambdas cannot capture structured bindings in C++17)
       const double sum = integrateHemisphere(nTheta, nPhi, [&](Vec3 m) { return microfacetD(dist, ax, ay, m) * m.z; });
       EXPECT_NEAR(sum, 1.0, 3e-3) << distributionName(dist) << " " << ax << " x " << ay;
