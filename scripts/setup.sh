@@ -9,6 +9,7 @@ packages=(
   libembree-dev libtbb-dev libopenimageio-dev libopenexr-dev libpng-dev libxsimd-dev
   libpugixml-dev libtinyobjloader-dev libcli11-dev zlib1g-dev
   libgtest-dev libbenchmark-dev
+  libopenmpi-dev openmpi-bin
   "$@"
 )
 

@@ -4,7 +4,10 @@
 // queue and memory stays bounded by the queue, whatever the image size.
 #pragma once
 
+#include <atomic>
 #include <vector>
+
+#include "erpt/byte_stream.h"
 
 #include "erpt/erpt_stages.h"
 #include "erpt/render.h"
@@ -26,6 +29,9 @@ class ErptChains {
     uint64_t seed = 0;         // the render's seed (chain and seed random streams)
     size_t capacity = 1024;    // chain slots (erptChainSlots)
     double depositEnergy = 0;  // e_d (equal deposition)
+    // When it turns true, consume() and finish() return false between steps (the render then
+    // falls back to its last saved state: the chains left are dropped, never half-deposited).
+    const std::atomic<bool>* stop = nullptr;
   };
   ErptChains(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times);
 
@@ -33,10 +39,22 @@ class ErptChains {
   // depositing e / m per step; at most Config::maxChainsPerSeed, each then depositing
   // e / (m cap)) and runs steps whenever the queue is full; on return every chain of the batch
   // is in the queue (or done). Seeds no chain can move (InPlaceReason), and every seed when
-  // e_d = 0, are deposited at their own film position.
-  void consume(const SeedStore& batch);
-  // Runs the remaining chains to the end.
-  void finish();
+  // e_d = 0, are deposited at their own film position. False: stopped (Config::stop).
+  bool consume(const SeedStore& batch);
+  // Runs the remaining chains to the end. False: stopped (Config::stop).
+  bool finish();
+  // The machine's state between batches with no chain in flight (after finish()): random
+  // stream counters, deposit totals, tally, filter counts. load() also empties the queue.
+  void save(ByteWriter& w) const;
+  void load(ByteReader& r);
+  // Split renders: the proposal tally becomes its total over the processes (`sum` adds doubles).
+  template <class Sum>
+  void reduceTally(const Sum& sum) {
+    if (tally_.empty()) return;
+    std::vector<double> t(tally_.begin(), tally_.end());
+    sum(t);
+    for (size_t i = 0; i < t.size(); ++i) tally_[i] = uint32_t(t[i]);
+  }
   // Energy added to the film so far (luminance), for tests.
   double depositedEnergy() const { return deposited_; }
   // The part of it deposited by seeds in place (InPlaceReason).
@@ -51,6 +69,7 @@ class ErptChains {
   // Deposits `energy` (luminance) in the seed's colour at its film position, counted by `why`.
   void depositInPlace(const SeedStore& store, size_t seed, double energy, InPlaceReason why);
   bool anyActive() const;
+  bool stopped() const;
 
   const Tracer& tracer_;
   Config config_;

@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "erpt/byte_stream.h"
 #include "erpt/image_io.h"
 
 namespace erpt {
@@ -26,6 +27,11 @@ class Film {
     return true;
   }
   RgbImage resolve(double samplesPerPixel) const;
+  void save(ByteWriter& w) const { w.putVector(sum_); }
+  // Split renders: `sum` replaces the sums by their total over the processes.
+  template <class Sum>
+  void reduce(const Sum& sum) { sum(sum_); }
+  void load(ByteReader& r) { r.getVector(sum_, sum_.size()); }
 
  private:
   int width_, height_;

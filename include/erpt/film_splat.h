@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "erpt/byte_stream.h"
 #include "erpt/image_io.h"
 #include "erpt/pixel_filter.h"
 
@@ -32,6 +33,19 @@ class SplatFilm {
   // (the path tracer counts it).
   void addSamples(const float* x, const float* y, const float* r, const float* g, const float* b, size_t n);
   RgbImage resolve(FilmMode mode, double samplesPerPixel) const;
+  void save(ByteWriter& w) const {
+    w.putVector(sum_);
+    w.putVector(weight_);
+  }
+  void load(ByteReader& r) {
+    r.getVector(sum_, sum_.size());
+    r.getVector(weight_, weight_.size());
+  }
+  template <class Sum>
+  void reduce(const Sum& sum) {
+    sum(sum_);
+    sum(weight_);
+  }
 
  private:
   const PixelFilter& filter_;

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "erpt/math.h"
@@ -14,6 +15,14 @@ namespace erpt {
 struct RgbImage {
   int width = 0, height = 0;
   std::vector<Color> pixels;  // row-major, row 0 at the top
+  // Text attributes (name, value): written to and read from EXR headers (a partial render's
+  // "erpt:partial"), not to PNG.
+  std::vector<std::pair<std::string, std::string>> metadata;
+  const std::string* attribute(const std::string& name) const {
+    for (const auto& [n, v] : metadata)
+      if (n == name) return &v;
+    return nullptr;
+  }
   Color& at(int x, int y) { return pixels[size_t(y) * width + x]; }
   const Color& at(int x, int y) const { return pixels[size_t(y) * width + x]; }
 };
@@ -30,6 +39,9 @@ void writePngAtomic(const std::string& path, const RgbImage& image);
 
 // 8-bit RGB pixels as they are (charts, heat maps), rows top to bottom.
 void writeRgb8Atomic(const std::string& path, int width, int height, const uint8_t* rgb);
+
+// Any file (checkpoints), written as atomically as the images.
+void writeBytesAtomic(const std::string& path, const std::vector<uint8_t>& bytes);
 
 // Remove any temporary image being written (for signal handlers: async-signal-safe).
 void removePendingImageFiles();

@@ -1,6 +1,7 @@
 // Rendering entry point shared by the CLI, tests and benchmarks.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -19,6 +20,25 @@
 namespace erpt {
 
 class Tracer;
+
+// A render's state after a whole number of sample passes (pass j gives every pixel its
+// sample j, so after k passes every pixel has k samples): what a checkpoint holds, and what a
+// render stopped part-way through a pass falls back to. `bytes` is the integrator's own
+// layout (film sums, chain counters, statistics; sample_passes.h).
+struct RenderState {
+  int passesDone = 0;
+  std::vector<uint8_t> bytes;
+};
+
+// A render split over processes (MPI; docs/long-renders.md, "Many machines"): this process
+// renders the sample passes j with j % ranks == rank, and sumAcrossRanks replaces a vector by
+// its element-wise sum over all ranks, added in rank order, on every rank (a collective call:
+// every rank makes the same calls in the same order).
+struct RenderShare {
+  int rank = 0, ranks = 1;
+  std::function<void(std::vector<double>&)> sumAcrossRanks;
+  bool split() const { return ranks > 1; }
+};
 
 struct RenderSettings {
   std::string integrator = "path";
@@ -47,7 +67,24 @@ struct RenderSettings {
   // Time-budgeted renders: called after every pass with the image so far, the render's
   // seconds so far (not counting this call) and its samples per pixel so far.
   std::function<void(const RgbImage&, double seconds, int spp)> onPass;
+  // Stopping early (path, direct, erpt): once *stop is true, the render ends at its next batch
+  // and returns the image of the sample passes it completed (RenderStats::partial). The
+  // pass under way is dropped, so every pixel has the same samples and the image is an
+  // unbiased render at fewer samples per pixel. A signal handler may set it.
+  const std::atomic<bool>* stop = nullptr;
+  // Called after every group of completed sample passes (and once before the first, with the
+  // state the render starts from) with the state and a function resolving its image.
+  std::function<void(const RenderState&, const std::function<RgbImage()>& image)> onPasses;
+  // Continue from this state (a checkpoint of the same scene and settings) instead of from
+  // nothing: the result is bit-identical to the uninterrupted render.
+  const RenderState* resume = nullptr;
+  // One of several processes rendering the image together (path, direct, erpt): the returned
+  // image, stats.spp and stats.samples are the whole render's, on every rank.
+  RenderShare share;
 };
+
+// Whether an integrator supports RenderSettings::stop, onPasses and resume.
+bool integratorStopsEarly(const std::string& integrator);
 
 struct RenderStats {
   double seconds = 0;
@@ -59,6 +96,9 @@ struct RenderStats {
   PmcStats pmc;
   int spp = 0;  // samples per pixel rendered (time-budgeted renders choose it)
   int passes = 0;
+  // Stopped early (RenderSettings::stop): `spp` samples per pixel of the requested ones were
+  // rendered and the image is normalised by them.
+  bool partial = false;
   // Images the integrator makes besides the result, by name (ERPT's proposed-mutations filter:
   // "raw", the unfiltered image, and "proposals", the tally); the CLI writes OUT-name.exr.
   std::vector<std::pair<std::string, RgbImage>> extraImages;

@@ -3,6 +3,7 @@
 #include <map>
 #include <string>
 
+#include "erpt/checkpoint.h"
 #include "erpt/erpt_settings.h"
 #include "erpt/render.h"
 #include "erpt/scene.h"
@@ -26,6 +27,19 @@ struct RenderArgs {
   std::string strategy = "paper", deposit = "paper", flow = "equal-deposition", lensShape = "square", causticAngle = "erpt";
   bool pmFilter = false;
   double time = 0;
+  // Long renders (docs/long-renders.md).
+  std::string checkpoint;        // --checkpoint FILE
+  double checkpointEvery = 300;  // --checkpoint-every SECONDS
+  double writePartial = 0;       // --write-partial SECONDS (0: off)
+  std::string display;           // --display HOST:PORT (the tev viewer)
+  std::vector<std::string> commandArgs;  // the render command's own arguments (kept in checkpoints)
+  const Checkpoint* resumeFrom = nullptr;  // `erpt resume`
+};
+
+struct ResumeArgs {
+  std::string checkpoint;
+  int threads = -1;  // -1: as the checkpointed render
+  bool quiet = false;
 };
 
 struct InfoArgs {
@@ -57,6 +71,8 @@ void addCompareCommand(CLI::App& app, CompareArgs& args);
 int runCompare(const CompareArgs& args);
 void addInfoCommand(CLI::App& app, InfoArgs& args);
 int runRender(const RenderArgs& args);
+void addResumeCommand(CLI::App& app, ResumeArgs& args);
+int runResume(const ResumeArgs& args);
 int runInfo(const InfoArgs& args);
 // The ERPT part of the end-of-render summary (stderr).
 void printErptSummary(const RenderStats& stats);

@@ -5,9 +5,13 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.h"
+#include "erpt/error.h"
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
+#include "pass_writer.h"
+#include "process_group.h"
 #include "progress.h"
+#include "stop_signals.h"
 
 namespace erpt::cli {
 
@@ -97,7 +101,50 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("--integrator", a.integrator, "Integrator: path (wavefront path tracer), erpt (energy redistribution path tracing), pmc-er (population Monte Carlo energy redistribution) or direct (direct lighting, for debugging); default: the scene's, if it is one of these, else path");
   cmd->add_option("--time", a.time, "Render for this many seconds instead of --spp samples per pixel (passes of growing spp; the image then depends on the machine's speed)")
       ->check(CLI::Range(1e-3, 1e7));
+  cmd->add_option("--checkpoint", a.checkpoint, "Write the render's state to FILE (atomically) every --checkpoint-every seconds and when it ends or is stopped; continue it with `erpt resume FILE` (path, direct, erpt)");
+  cmd->add_option("--checkpoint-every", a.checkpointEvery, "Seconds between checkpoints (default 300; written at the end of a group of sample passes)")
+      ->check(CLI::Range(0.0, 1e7));
+  cmd->add_option("--display", a.display, "Stream the image as it converges to the tev viewer listening at HOST:PORT (tev's default: 127.0.0.1:14158)");
+  cmd->add_option("--write-partial", a.writePartial, "Write the image of the sample passes completed so far to the output every this many seconds (path, direct, erpt)")
+      ->check(CLI::Range(0.0, 1e7));
   addRenderOptions(cmd, a);
+}
+
+void addResumeCommand(CLI::App& app, ResumeArgs& a) {
+  CLI::App* cmd = app.add_subcommand("resume", "Continue a render from its checkpoint (--checkpoint): same scene, options and output; the image is bit-identical to an uninterrupted render");
+  cmd->add_option("checkpoint", a.checkpoint, "Checkpoint file")->required();
+  cmd->add_option("--threads", a.threads, "Worker threads (default: as the render was started; the image does not depend on it)")
+      ->check(CLI::Range(0, 1024));
+  cmd->add_flag("-q,--quiet", a.quiet, "No progress output");
+}
+
+int runResume(const ResumeArgs& r) {
+  namespace fs = std::filesystem;
+  const ProcessGroup& group = ProcessGroup::current();
+  const std::string given = fs::absolute(r.checkpoint).string();
+  const std::string path = group.size() > 1 ? given + "." + std::to_string(group.rank()) : given;  // one per rank
+  const Checkpoint checkpoint = readCheckpoint(path);
+  std::error_code ec;
+  fs::current_path(checkpoint.directory, ec);  // the render's paths are relative to it
+  if (ec) throw InputError({path, 0}, "cannot enter the render's directory '" + checkpoint.directory + "': " + ec.message());
+  CLI::App app;
+  RenderArgs a;
+  addRenderCommand(app, a);
+  std::vector<std::string> argv{"erpt", "render"};
+  argv.insert(argv.end(), checkpoint.args.begin(), checkpoint.args.end());
+  std::vector<const char*> cargs;
+  for (const std::string& s : argv) cargs.push_back(s.c_str());
+  try {
+    app.parse(int(cargs.size()), cargs.data());
+  } catch (const CLI::ParseError& e) {
+    throw InputError({path, 0}, std::string("checkpoint holds arguments this erpt does not take: ") + e.what());
+  }
+  a.commandArgs = checkpoint.args;
+  a.checkpoint = given;  // runRender adds the rank in a split render
+  a.resumeFrom = &checkpoint;
+  if (r.threads >= 0) a.threads = r.threads;
+  a.quiet = a.quiet || r.quiet;
+  return runRender(a);
 }
 
 Scene loadSceneFor(const RenderArgs& a) {
@@ -169,18 +216,62 @@ RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
   return s;
 }
 
-int runRender(const RenderArgs& a) {
+int runRender(const RenderArgs& given) {
   namespace fs = std::filesystem;
+  const ProcessGroup& group = ProcessGroup::current();
+  RenderArgs a = given;
+  if (group.size() > 1 && !a.checkpoint.empty())  // one checkpoint per rank (resume reads the same names)
+    a.checkpoint += "." + std::to_string(group.rank());
   fs::path out(a.output);
   if (out.extension() != ".exr") throw UsageError("-o must name an .exr file (the PNG is written beside it)");
   fs::path dir = out.parent_path().empty() ? fs::path(".") : out.parent_path();
   if (!fs::is_directory(dir)) throw UsageError("output directory '" + dir.string() + "' does not exist");
+  if (!a.checkpoint.empty() && a.time > 0) throw UsageError("--checkpoint needs a fixed --spp, not --time");
   Scene scene = loadSceneFor(a);
   RenderSettings s = settingsFromArgs(a, scene);
-  Progress progress(!a.quiet);
+  const bool longRender = !a.checkpoint.empty() || a.writePartial > 0 || a.resumeFrom || !a.display.empty();
+  if (longRender && !integratorStopsEarly(s.integrator))
+    throw UsageError("--checkpoint, --write-partial, --display and resume are not supported by --integrator " +
+                     s.integrator + " yet");
+  if (longRender && a.time > 0) throw UsageError("--write-partial and --display need a fixed --spp, not --time");
+  const uint64_t fingerprint = longRender ? sceneFingerprint(scene) : 0;
+  if (group.size() > 1) s.share = group.share();
+  if (a.resumeFrom) {
+    if (a.resumeFrom->rank != group.rank() || a.resumeFrom->ranks != group.size())
+      throw InputError({a.checkpoint, 0}, "checkpoint of rank " + std::to_string(a.resumeFrom->rank) + " of " +
+                                              std::to_string(a.resumeFrom->ranks) + " processes; this is rank " +
+                                              std::to_string(group.rank()) + " of " + std::to_string(group.size()));
+    if (a.resumeFrom->sceneFingerprint != fingerprint)
+      throw InputError({a.checkpoint, 0}, "checkpoint belongs to another scene ('" + a.scene +
+                                              "' or a file it loads changed since the checkpoint was written)");
+    s.resume = &a.resumeFrom->state;
+  }
+  Progress progress(!a.quiet && group.leader());
   s.progress = [&](double f) { progress.update(f); };
+  const StopOnSignal stop(integratorStopsEarly(s.integrator));
+  s.stop = stop.flag();
+  const RenderSettings resolved = resolveSettings(scene, s);
+  const int ranks = group.size(), ownSpp = (resolved.spp - group.rank() + ranks - 1) / ranks;  // this rank's passes
+  PassWriter passWriter(a, fingerprint, resolved.width, resolved.height, ownSpp, s.share);
+  if (passWriter.active())
+    s.onPasses = [&](const RenderState& state, const std::function<RgbImage()>& image) { passWriter.onPasses(state, image); };
   RenderStats stats;
   RgbImage image = render(scene, s, stats);
+  progress.end();
+  passWriter.finish(stats.spp > 0 ? &image : nullptr);
+  RenderSettings r = resolveSettings(scene, s);
+  const std::string resumeCommand = (ranks > 1 ? "mpirun -n " + std::to_string(ranks) + " " : std::string()) +
+                                    "erpt resume " + given.checkpoint;
+  if (!group.leader()) return stats.partial ? stop.exitStatus() : 0;  // rank 0 writes the image
+  if (stats.partial && stats.spp == 0) {
+    std::fprintf(stderr, "%s: stopped before the first sample pass completed: no image written%s\n", s.integrator.c_str(),
+                 a.checkpoint.empty() ? "" : ("; continue with: " + resumeCommand).c_str());
+    return stop.exitStatus();
+  }
+  const std::string partialNote =
+      std::to_string(stats.spp) + " of " + std::to_string(r.spp) + " samples per pixel (stopped by signal " +
+      std::to_string(stop.signal()) + ")";
+  if (stats.partial) image.metadata.emplace_back("erpt:partial", partialNote);
 
   fs::path png = out;
   png.replace_extension(".png");
@@ -192,9 +283,7 @@ int runRender(const RenderArgs& a) {
     // Counts and per-pixel statistics: EXR only.
     if (name != "proposals" && name != "strategy") writePngAtomic(fs::path(p).replace_extension(".png").string(), extra);
   }
-  writeImageAtomic(out.string(), image);
-  writePngAtomic(png.string(), image);
-  RenderSettings r = resolveSettings(scene, s);
+  writeImagePair(out.string(), image);
   std::fprintf(stderr, "%s: %dx%d, %d spp%s, %llu samples in %.2f s, %.2f Mrays/s, %llu invalid samples dropped -> %s, %s\n",
                s.integrator.c_str(), r.width, r.height, stats.spp,
                stats.passes > 1 ? (" in " + std::to_string(stats.passes) + " passes").c_str() : "",
@@ -203,7 +292,14 @@ int runRender(const RenderArgs& a) {
                (unsigned long long)stats.invalidSamples, out.string().c_str(), png.string().c_str());
   if (s.integrator == "erpt") printErptSummary(stats);
   if (s.integrator == "pmc-er") printPmcSummary(stats);
-  return 0;
+  if (a.resumeFrom) std::fprintf(stderr, "%s: resumed after %d of %d samples per pixel%s\n", s.integrator.c_str(),
+                                 a.resumeFrom->state.passesDone, ownSpp, ranks > 1 ? " (of rank 0)" : "");
+  if (ranks > 1) std::fprintf(stderr, "%s: rendered by %d processes (samples per pixel, samples and rays are their total)\n",
+                              s.integrator.c_str(), ranks);
+  if (!stats.partial) return 0;
+  std::fprintf(stderr, "%s: PARTIAL image: %s%s\n", s.integrator.c_str(), partialNote.c_str(),
+               a.checkpoint.empty() ? "" : ("; continue with: " + resumeCommand).c_str());
+  return stop.exitStatus();
 }
 
 }  // namespace erpt::cli

@@ -2,7 +2,7 @@
 // light via next-event estimation and BSDF sampling combined with the power heuristic), as
 // Mitsuba's `direct` integrator computes it. Kept as a debugging integrator.
 //
-// Wavefront layout: samples are processed in batches; each batch runs the stages
+// Wavefront layout: samples are processed in sample passes (sample_passes.h), in batches; each batch runs the stages
 // generate -> intersect (coherent) -> shade -> {occluded, intersect} -> gather -> film.
 #include <atomic>
 
@@ -11,6 +11,7 @@
 #include "erpt/stages.h"
 #include "erpt/tracer.h"
 #include "render_setup.h"
+#include "sample_passes.h"
 
 namespace erpt {
 
@@ -24,55 +25,66 @@ RgbImage renderDirect(const Scene& scene, const RenderSettings& settings, Render
   const Tracer& tracer = setup.tracer;
   const StageContext& ctx = setup.ctx;
   Film& film = setup.film;
-  const std::vector<uint32_t>& order = setup.order;
-  const size_t spp = size_t(settings.spp), total = setup.totalSamples;
   DirectSampleQueue samples;
   RayQueue cameraRays, shadowRays, bsdfRays;
   HitQueue cameraHits, bsdfHits;
-  std::atomic<uint64_t> rays{0};
-  uint64_t invalid = 0;
-
-  for (size_t batchStart = 0; batchStart < total; batchStart += kBatchSamples) {
-    const size_t n = std::min(kBatchSamples, total - batchStart);
-    for (auto* q : {&cameraRays, &shadowRays, &bsdfRays}) prepareRays(*q, n);
-    for (auto* q : {&cameraHits, &bsdfHits}) q->resize(n);
-    samples.resize(n);
-    // Slot j of the batch is sample (batchStart + j) % spp of pixel order[(batchStart + j) / spp].
-    for (size_t j = 0; j < n; ++j) {
-      samples.pixel[j] = order[(batchStart + j) / spp];
-      samples.sample[j] = uint32_t((batchStart + j) % spp);
+  // Renders the samples of passes [first, end) in batches.
+  auto run = [&](int first, int end, const std::function<void(double)>& progress) {
+    const PathSampleSet set = passSamples(setup.order, first, end, settings.share);
+    const size_t total = set.count;
+    std::atomic<uint64_t> rays{0};
+    for (size_t batchStart = 0; batchStart < total; batchStart += kBatchSamples) {
+      if (stopRequested(settings.stop)) return false;
+      const size_t n = std::min(kBatchSamples, total - batchStart);
+      for (auto* q : {&cameraRays, &shadowRays, &bsdfRays}) prepareRays(*q, n);
+      for (auto* q : {&cameraHits, &bsdfHits}) q->resize(n);
+      samples.resize(n);
+      for (size_t j = 0; j < n; ++j) set.at(batchStart + j, samples.pixel[j], samples.sample[j]);
+      forEachRange("generate", n, kGrain, [&](IndexRange r) { stageGenerateCameraRays(ctx, samples.pixel.data(), samples.sample.data(), cameraRays, r); },
+                   &stats.stages);
+      forEachRange("intersect", n, kGrain,
+                   [&](IndexRange r) { tracer.intersect(cameraRays, cameraHits, r, RayCoherence::Coherent); },
+                   &stats.stages);
+      forEachRange("shade", n, kGrain,
+                   [&](IndexRange r) { stageShadeDirect(ctx, cameraRays, cameraHits, samples, shadowRays, bsdfRays, r); },
+                   &stats.stages);
+      forEachRange("shadow", n, kGrain, [&](IndexRange r) { tracer.occluded(shadowRays, r); }, &stats.stages);
+      forEachRange("intersect", n, kGrain,
+                   [&](IndexRange r) { tracer.intersect(bsdfRays, bsdfHits, r, RayCoherence::Incoherent); },
+                   &stats.stages);
+      forEachRange("gather", n, kGrain,
+                   [&](IndexRange r) {
+                     uint64_t count = 0;
+                     for (size_t i = r.begin; i < r.end; ++i)
+                       count += 1 + (shadowRays.tnear[i] <= shadowRays.tfar[i]) + (bsdfRays.tnear[i] <= bsdfRays.tfar[i]);
+                     rays += count;
+                     stageGatherDirect(ctx, shadowRays, bsdfRays, bsdfHits, samples, r);
+                   },
+                   &stats.stages);
+      // Accumulate in slot order on one thread: film sums are then independent of threading.
+      for (size_t j = 0; j < n; ++j) stats.invalidSamples += !film.addIfFinite(samples.pixel[j], samples.radianceAt(j));
+      stats.samples += n;
+      stats.rays += rays.exchange(0);
+      progress(double(batchStart + n) / double(total));
     }
-    forEachRange("generate", n, kGrain, [&](IndexRange r) { stageGenerateCameraRays(ctx, samples.pixel.data(), samples.sample.data(), cameraRays, r); },
-                 &stats.stages);
-    forEachRange("intersect", n, kGrain,
-                 [&](IndexRange r) { tracer.intersect(cameraRays, cameraHits, r, RayCoherence::Coherent); },
-                 &stats.stages);
-    forEachRange("shade", n, kGrain,
-                 [&](IndexRange r) { stageShadeDirect(ctx, cameraRays, cameraHits, samples, shadowRays, bsdfRays, r); },
-                 &stats.stages);
-    forEachRange("shadow", n, kGrain, [&](IndexRange r) { tracer.occluded(shadowRays, r); }, &stats.stages);
-    forEachRange("intersect", n, kGrain,
-                 [&](IndexRange r) { tracer.intersect(bsdfRays, bsdfHits, r, RayCoherence::Incoherent); },
-                 &stats.stages);
-    forEachRange("gather", n, kGrain,
-                 [&](IndexRange r) {
-                   uint64_t count = 0;
-                   for (size_t i = r.begin; i < r.end; ++i)
-                     count += 1 + (shadowRays.tnear[i] <= shadowRays.tfar[i]) + (bsdfRays.tnear[i] <= bsdfRays.tfar[i]);
-                   rays += count;
-                   stageGatherDirect(ctx, shadowRays, bsdfRays, bsdfHits, samples, r);
-                 },
-                 &stats.stages);
-    // Accumulate in slot order on one thread: film sums are then independent of threading.
-    for (size_t j = 0; j < n; ++j) {
-      invalid += !film.addIfFinite(samples.pixel[j], samples.radianceAt(j));
-    }
-    if (settings.progress) settings.progress(double(batchStart + n) / double(total));
-  }
-  stats.samples = total;
-  stats.rays = rays;
-  stats.invalidSamples = invalid;
-  return film.resolve(double(spp));
+    return true;
+  };
+  SamplePassHooks passes;
+  passes.save = [&](ByteWriter& w) {
+    film.save(w);
+    w.put(stats.samples), w.put(stats.rays), w.put(stats.invalidSamples);
+  };
+  passes.load = [&](ByteReader& r) {
+    film.load(r);
+    r.get(stats.samples), r.get(stats.rays), r.get(stats.invalidSamples);
+  };
+  passes.run = run;
+  passes.reduce = [&](const RenderShare& share) {
+    film.reduce(share.sumAcrossRanks);
+    sumCounters(share, {&stats.samples, &stats.rays, &stats.invalidSamples});
+  };
+  passes.image = [&](int done) { return film.resolve(double(done)); };
+  return renderInSamplePasses(settings, setup.order.size(), stats, passes);
 }
 
 }  // namespace erpt

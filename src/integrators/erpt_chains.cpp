@@ -1,5 +1,6 @@
 #include "erpt/erpt_chains.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -27,7 +28,7 @@ ErptChains::ErptChains(const Tracer& tracer, const Config& config, Film& film, E
   }
 }
 
-void ErptChains::consume(const SeedStore& batch) {
+bool ErptChains::consume(const SeedStore& batch) {
   batch_ = &batch;
   pending_.clear();
   pendingNext_ = 0;
@@ -84,14 +85,46 @@ void ErptChains::consume(const SeedStore& batch) {
   }
   refill();
   while (pendingNext_ < pending_.size()) {
+    if (stopped()) return false;
     step();
     refill();
   }
   batch_ = nullptr;
+  return true;
 }
 
-void ErptChains::finish() {
-  while (anyActive()) step();
+bool ErptChains::finish() {
+  while (anyActive()) {
+    if (stopped()) return false;
+    step();
+  }
+  return true;
+}
+
+bool ErptChains::stopped() const { return config_.stop && config_.stop->load(std::memory_order_relaxed); }
+
+void ErptChains::save(ByteWriter& w) const {
+  w.put(config_.depositEnergy);
+  w.put(seedCounter_), w.put(chainCounter_);
+  w.put(deposited_), w.put(inPlaceDeposited_);
+  for (int k = 0; k < kMutationKindCount; ++k) w.put(counters_.proposed[k].load()), w.put(counters_.accepted[k].load());
+  for (int k = 0; k < kRejectReasonCount; ++k) w.put(counters_.rejected[k].load());
+  w.put(filters_.discarded), w.put(filters_.discardedEnergy);
+  w.putVector(tally_);
+}
+
+void ErptChains::load(ByteReader& r) {
+  r.get(config_.depositEnergy);
+  r.get(seedCounter_), r.get(chainCounter_);
+  r.get(deposited_), r.get(inPlaceDeposited_);
+  for (int k = 0; k < kMutationKindCount; ++k) counters_.proposed[k] = r.get<uint64_t>(), counters_.accepted[k] = r.get<uint64_t>();
+  for (int k = 0; k < kRejectReasonCount; ++k) counters_.rejected[k] = r.get<uint64_t>();
+  r.get(filters_.discarded), r.get(filters_.discardedEnergy);
+  r.getVector(tally_, tally_.size());
+  std::fill(q_.chains.stepsLeft.begin(), q_.chains.stepsLeft.end(), 0u);
+  pending_.clear();
+  pendingNext_ = 0;
+  batch_ = nullptr;
 }
 
 bool ErptChains::anyActive() const {

@@ -3,11 +3,12 @@
 //
 //   1. Pilot pass: a path tracer with its own random stream estimates e_ave, the mean energy
 //      of the seeds per pixel sample; e_d = n e_ave / M (eq. 7). It only sets the run time.
-//   2. Main pass: the wavefront path tracer at n samples per pixel streams its seeds, batch by
-//      batch, into the chain machine (erpt_chains.h), which starts floor(U + e / (m e_d))
-//      chains per seed and runs them; pixel value = sum of deposits / n.
-//   3. Optional (--direct-samples N): paths of at most one bounce are left out of the seeds
+//   2. Optional (--direct-samples N): paths of at most one bounce are left out of the seeds
 //      and rendered by the stratified direct-lighting integrator instead (as Mitsuba does).
+//   3. Main pass: the wavefront path tracer at n samples per pixel, in sample passes
+//      (sample_passes.h), streams its seeds batch by batch into the chain machine
+//      (erpt_chains.h), which starts floor(U + e / (m e_d)) chains per seed and runs them,
+//      to the end after each group of passes; pixel value = sum of deposits / passes done.
 #include "erpt_integrator.h"
 
 #include <algorithm>
@@ -21,11 +22,12 @@
 #include "erpt/seed_checks.h"
 #include "path_integrator.h"
 #include "render_setup.h"
+#include "sample_passes.h"
 
 namespace erpt {
 
 namespace {
-constexpr uint64_t kPilotStream = 0x70696c6f74ull, kDirectStream = 0x646972656374ull;
+constexpr uint64_t kPilotStream = 0x70696c6f74ull, kDirectStream = 0x646972656374ull, kRankStream = 0x72616e6bull;
 }  // namespace
 
 void validateErptSettings(const ErptSettings& o) {
@@ -46,10 +48,9 @@ void validateErptSettings(const ErptSettings& o) {
 // e_ave: mean energy per pixel sample of the seeds ERPT will redistribute.
 double erptPilotEnergy(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
   validateErptSettings(s.erpt);
-  RenderSettings pilot = s;
+  RenderSettings pilot = subRenderSettings(s);
   pilot.spp = s.erpt.pilotSpp;
   pilot.seed = streamKey(s.seed, kPilotStream, 0);
-  pilot.progress = nullptr;
   SeedStore store;
   pilot.seeds = &store;
   double energy = 0;
@@ -64,82 +65,141 @@ double erptPilotEnergy(const Scene& scene, const RenderSettings& s, RenderStats&
   RenderStats pilotStats;
   renderPath(scene, pilot, pilotStats);
   stats.rays += pilotStats.rays;
-  return energy / (double(s.width) * s.height * pilot.spp);
+  if (s.share.split()) {  // the ranks' pilot passes together (pilotStats.spp is already their total)
+    std::vector<double> total{energy};
+    s.share.sumAcrossRanks(total);
+    energy = total[0];
+  }
+  // A stopped pilot: the render stops too, before its first pass (renderErpt).
+  return energy / (double(s.width) * s.height * std::max(1, pilotStats.spp));
 }
 
 RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
   const ErptSettings& o = s.erpt;
   validateErptSettings(o);
   ErptStats& es = stats.erpt;
-  es.pilotEnergy = o.knownPilotEnergy >= 0 ? o.knownPilotEnergy : erptPilotEnergy(scene, s, stats);
-  es.depositEnergy = o.knownDepositEnergy > 0 ? o.knownDepositEnergy : double(s.spp) * es.pilotEnergy / o.mutationsPerPixel;
+  RgbImage direct;
+  if (!s.resume) {  // else pilot energy, e_d and the direct image come with the state
+    es.pilotEnergy = o.knownPilotEnergy >= 0 ? o.knownPilotEnergy : erptPilotEnergy(scene, s, stats);
+    es.depositEnergy = o.knownDepositEnergy > 0 ? o.knownDepositEnergy : double(s.spp) * es.pilotEnergy / o.mutationsPerPixel;
+    // The direct pass first, so that the image of every completed pass is whole. (A split
+    // render runs it even when stopped: its ranks must make the same collective calls.)
+    if (!stopRequested(s.stop) || s.share.split()) direct = renderDirectPass(scene, s, stats);
+  }
 
   RenderSetup setup(scene, s);
   FilmDensity density(setup.filter, s.width, s.height);
-  ErptChains::Config config{ErptStepContext{MeasureContext{scene, setup.lights, setup.camera, density}, o}, s.seed,
-                            erptChainSlots(setup.pool.threads()), es.depositEnergy};
+  // The chains' random streams: a rank of a split render has its own (its counters start at 0 too).
+  const uint64_t chainSeed = s.share.split() ? streamKey(s.seed, kRankStream, uint64_t(s.share.rank)) : s.seed;
+  ErptChains::Config config{ErptStepContext{MeasureContext{scene, setup.lights, setup.camera, density}, o}, chainSeed,
+                            erptChainSlots(setup.pool.threads()), es.depositEnergy, s.stop};
   ErptChains chains(setup.tracer, config, setup.film, es, stats.stages);
+  if (stopRequested(s.stop) && !s.resume && !s.share.split()) {  // stopped in the pilot or the direct pass
+    stats.spp = 0;
+    stats.partial = true;
+    return redistributionImage(s, setup.film.resolve(1.0), RgbImage{}, nullptr, nullptr);
+  }
 
-  RenderSettings main = s;
   SeedStore store;
-  main.seeds = &store;
+  RenderStats seedStats;
   double inChains = 0;
+  auto timed = [&](auto&& fn) {
+    const auto t = std::chrono::steady_clock::now();
+    const bool done = fn();
+    inChains += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    return done;
+  };
+  bool chainsRan = true;
   // Every seed goes to the chain machine, also when e_d = 0 (the pilot found no energy): it
   // then deposits the seeds where they are, so no energy is lost.
-  main.seedSink = [&](SeedStore& batch) {
-    auto t = std::chrono::steady_clock::now();
-    chains.consume(batch);
-    inChains += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  auto sink = [&](SeedStore& batch) { chainsRan = timed([&] { return chains.consume(batch); }) && chainsRan; };
+  SamplePassHooks passes;
+  passes.save = [&](ByteWriter& w) {
+    w.put(es);
+    w.put(seedStats.samples), w.put(seedStats.rays), w.put(seedStats.invalidSamples);
+    w.putVector(direct.pixels);
+    setup.film.save(w);
+    chains.save(w);
   };
-  RenderStats seedStats;
-  renderPath(scene, main, seedStats);
-  auto t = std::chrono::steady_clock::now();
-  chains.finish();
-  inChains += std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  passes.load = [&](ByteReader& r) {
+    r.get(es);
+    r.get(seedStats.samples), r.get(seedStats.rays), r.get(seedStats.invalidSamples);
+    const size_t directPixels = o.directSamples > 0 ? size_t(s.width) * size_t(s.height) : 0;
+    r.getVector(direct.pixels, directPixels);
+    direct.width = directPixels ? s.width : 0, direct.height = directPixels ? s.height : 0;
+    setup.film.load(r);
+    chains.load(r);
+  };
+  // Passes [first, end): their seeds stream into the chains, which then run to their end, so
+  // that the state after the group holds no chain in flight.
+  passes.run = [&](int first, int end, const std::function<void(double)>& progress) {
+    chainsRan = true;
+    const PathTraceOutput out{nullptr, nullptr, &store, sink, progress, s.stop};
+    if (!tracePathSamples(setup, passSamples(setup.order, first, end, s.share), out, seedStats) || !chainsRan) return false;
+    return timed([&] { return chains.finish(); });
+  };
+  passes.reduce = [&](const RenderShare& share) {
+    setup.film.reduce(share.sumAcrossRanks);
+    chains.reduceTally(share.sumAcrossRanks);
+    sumCounters(share, {&seedStats.samples, &seedStats.rays, &seedStats.invalidSamples, &es.seeds, &es.chains,
+                        &es.mutations, &es.deposits, &es.rays, &es.cappedSeeds});
+  };
+  auto image = [&](int done, std::vector<std::pair<std::string, RgbImage>>* extras) {
+    return redistributionImage(s, setup.film.resolve(double(done)), direct,
+                               o.pmFilterRadius >= 0 ? &chains.proposalTally() : nullptr, extras);
+  };
+  passes.image = [&](int done) { return image(done, nullptr); };
+  renderInSamplePasses(s, setup.order.size(), stats, passes);
   es.erptSeconds = inChains;
   stats.samples = seedStats.samples;
   stats.rays += seedStats.rays + es.rays;
   stats.invalidSamples = seedStats.invalidSamples;
   for (const auto& [name, seconds] : seedStats.stages.all()) stats.stages.add("seed " + name, seconds);
-  return finishRedistribution(scene, s, stats, setup.film.resolve(double(s.spp)),
-                              o.pmFilterRadius >= 0 ? &chains.proposalTally() : nullptr);
+  if (stats.spp == 0) return passes.image(1);  // stopped before the first pass: black
+  return image(stats.spp, &stats.extraImages);
+}
+
+RgbImage renderDirectPass(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+  if (s.erpt.directSamples <= 0) return RgbImage{};
+  RenderSettings direct = subRenderSettings(s);
+  direct.spp = s.erpt.directSamples;
+  // Its own random stream: the main pass's keys would correlate the two estimates.
+  direct.seed = streamKey(s.seed, kDirectStream, 0);
+  RenderStats directStats;
+  RgbImage d = renderDirect(scene, direct, directStats);
+  stats.rays += directStats.rays;
+  for (const auto& [name, seconds] : directStats.stages.all()) stats.stages.add("direct " + name, seconds);
+  return d;
+}
+
+RgbImage redistributionImage(const RenderSettings& s, RgbImage image, const RgbImage& direct,
+                             const std::vector<uint32_t>* tally, std::vector<std::pair<std::string, RgbImage>>* extras) {
+  RgbImage chainsOnly, counts;
+  if (tally) {
+    // The filter rescales what the chains deposited (not the direct pass) and needs it apart.
+    chainsOnly = image;
+    counts.width = s.width;
+    counts.height = s.height;
+    for (uint32_t t : *tally) counts.pixels.push_back(Color(float(t)));
+  }
+  if (!direct.pixels.empty())
+    for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] += direct.pixels[i];
+  if (!tally) return image;
+  RgbImage filtered = proposalFilteredImage(image, chainsOnly, counts, s.erpt.pmFilterRadius);
+  if (extras) {
+    // Keep the unfiltered image and the chains' part for the user (and for time-budgeted
+    // renders, which filter the sum of their passes).
+    extras->emplace_back("proposals", std::move(counts));
+    extras->emplace_back("raw", std::move(image));
+    extras->emplace_back("chains", std::move(chainsOnly));
+  }
+  return filtered;
 }
 
 RgbImage finishRedistribution(const Scene& scene, const RenderSettings& s, RenderStats& stats, RgbImage image,
                               const std::vector<uint32_t>* tally) {
-  const ErptSettings& o = s.erpt;
-  RgbImage chainsOnly;
-  if (tally) {
-    // The filter rescales what the chains deposited (not the direct pass) and needs it apart.
-    chainsOnly = image;
-    RgbImage counts;
-    counts.width = s.width;
-    counts.height = s.height;
-    for (uint32_t t : *tally) counts.pixels.push_back(Color(float(t)));
-    stats.extraImages.emplace_back("proposals", std::move(counts));
-  }
-  if (o.directSamples > 0) {
-    RenderSettings direct = s;
-    direct.spp = o.directSamples;
-    // Its own random stream: the main pass's keys would correlate the two estimates.
-    direct.seed = streamKey(s.seed, kDirectStream, 0);
-    direct.progress = nullptr;
-    RenderStats directStats;
-    RgbImage d = renderDirect(scene, direct, directStats);
-    for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] += d.pixels[i];
-    stats.rays += directStats.rays;
-    for (const auto& [name, seconds] : directStats.stages.all()) stats.stages.add("direct " + name, seconds);
-  }
-  if (tally) {
-    // Keep the unfiltered image and the chains' part for the user (and for time-budgeted
-    // renders, which filter the sum of their passes).
-    const RgbImage counts = stats.extraImages.back().second;
-    RgbImage filtered = proposalFilteredImage(image, chainsOnly, counts, o.pmFilterRadius);
-    stats.extraImages.emplace_back("raw", std::move(image));
-    stats.extraImages.emplace_back("chains", std::move(chainsOnly));
-    return filtered;
-  }
-  return image;
+  const RgbImage direct = renderDirectPass(scene, s, stats);
+  return redistributionImage(s, std::move(image), direct, tally, &stats.extraImages);
 }
 
 }  // namespace erpt

@@ -12,9 +12,16 @@ void validateErptSettings(const ErptSettings& settings);
 // e_ave of ERPT's pilot pass: the mean energy per pixel sample of the seeds it redistributes.
 double erptPilotEnergy(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
 RgbImage renderErpt(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
-// What ERPT and PMC-ER do after their chains: `image` (the chains' image, resolved) plus the
-// direct-lighting pass (--direct-samples), then the proposed-mutations filter when `tally`
-// (complete proposals per pixel) is given, with its extra images.
+// The direct-lighting pass of ERPT and PMC-ER (--direct-samples N > 0; else an empty image),
+// with its own random stream; adds its rays and stage times to `stats`.
+RgbImage renderDirectPass(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
+// The image ERPT and PMC-ER show: `chains` (the chains' image, resolved) plus `direct` (when
+// not empty), then the proposed-mutations filter when `tally` (complete proposals per pixel)
+// is given. With `extras`, the filter's extra images (proposals, raw, chains) go there.
+RgbImage redistributionImage(const RenderSettings& settings, RgbImage chains, const RgbImage& direct,
+                             const std::vector<uint32_t>* tally,
+                             std::vector<std::pair<std::string, RgbImage>>* extras);
+// PMC-ER, after its chains: the direct pass, then redistributionImage into stats.extraImages.
 RgbImage finishRedistribution(const Scene& scene, const RenderSettings& settings, RenderStats& stats, RgbImage image,
                               const std::vector<uint32_t>* tally);
 

@@ -16,6 +16,7 @@
 #include <chrono>
 #include <mutex>
 #include <numeric>
+#include <optional>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -26,6 +27,7 @@
 #include "erpt/tracer.h"
 #include "path_integrator.h"
 #include "render_setup.h"
+#include "sample_passes.h"
 
 namespace erpt {
 
@@ -212,7 +214,7 @@ void traceSamples(const RenderSetup& setup, const PathSampleSet& samples, size_t
 }
 }  // namespace
 
-void tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, const PathTraceOutput& out,
+bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, const PathTraceOutput& out,
                       RenderStats& stats) {
   const size_t total = samples.count;
   const double threads = double(setup.pool.threads());
@@ -223,7 +225,12 @@ void tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
   tbb::enumerable_thread_specific<PathWavefront> local;  // rendering: one per thread
   std::mutex timesMutex;
 
+  bool complete = true;
   for (size_t first = 0; first < total; first += kBatchPaths) {
+    if (stopRequested(out.stop)) {
+      complete = false;
+      break;
+    }
     const size_t n = std::min(kBatchPaths, total - first);
     batch.resize(n);
     if (out.seeds) {
@@ -260,26 +267,38 @@ void tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
   stats.samples += total;
   stats.rays += rayCount;
   stats.invalidSamples += invalid;
+  return complete;
 }
 
 RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderStats& stats) {
   RenderSetup setup(scene, settings);
-  const std::vector<uint32_t>& order = setup.order;
-  const size_t spp = size_t(settings.spp);
-  // Sample k: pixel order[k / spp], its sample k % spp (a pixel's samples are neighbours).
-  const PathSampleSet samples{setup.totalSamples, [&](size_t k, uint32_t& pixel, uint32_t& sample) {
-                                pixel = order[k / spp];
-                                sample = uint32_t(k % spp);
-                              }};
-  if (setup.filmMode != FilmMode::Fis) {
-    SplatFilm splat(setup.filter, settings.width, settings.height);
-    PathTraceOutput out{nullptr, &splat, settings.seeds, settings.seedSink, settings.progress};
-    tracePathSamples(setup, samples, out, stats);
-    return splat.resolve(setup.filmMode, double(spp));
-  }
-  tracePathSamples(setup, samples, PathTraceOutput{&setup.film, nullptr, settings.seeds, settings.seedSink, settings.progress},
-                   stats);
-  return setup.film.resolve(double(spp));
+  std::optional<SplatFilm> splat;
+  if (setup.filmMode != FilmMode::Fis) splat.emplace(setup.filter, settings.width, settings.height);
+  SamplePassHooks passes;
+  passes.save = [&](ByteWriter& w) {
+    if (splat) splat->save(w);
+    else setup.film.save(w);
+    w.put(stats.samples), w.put(stats.rays), w.put(stats.invalidSamples);
+  };
+  passes.load = [&](ByteReader& r) {
+    if (splat) splat->load(r);
+    else setup.film.load(r);
+    r.get(stats.samples), r.get(stats.rays), r.get(stats.invalidSamples);
+  };
+  passes.run = [&](int first, int end, const std::function<void(double)>& progress) {
+    const PathTraceOutput out{splat ? nullptr : &setup.film, splat ? &*splat : nullptr, settings.seeds, settings.seedSink,
+                              progress, settings.stop};
+    return tracePathSamples(setup, passSamples(setup.order, first, end, settings.share), out, stats);
+  };
+  passes.reduce = [&](const RenderShare& share) {
+    if (splat) splat->reduce(share.sumAcrossRanks);
+    else setup.film.reduce(share.sumAcrossRanks);
+    sumCounters(share, {&stats.samples, &stats.rays, &stats.invalidSamples});
+  };
+  passes.image = [&](int done) {
+    return splat ? splat->resolve(setup.filmMode, double(done)) : setup.film.resolve(double(done));
+  };
+  return renderInSamplePasses(settings, setup.order.size(), stats, passes);
 }
 
 }  // namespace erpt

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <atomic>
 #include <functional>
 
 #include "erpt/render.h"
@@ -28,10 +29,12 @@ struct PathTraceOutput {
   SeedStore* seeds = nullptr;
   std::function<void(SeedStore&)> seedSink;
   std::function<void(double fraction)> progress;
+  const std::atomic<bool>* stop = nullptr;  // checked before every batch
 };
 // Runs the path tracer over `samples` with the setup's camera, lights and stage context (its
-// spp sets the strata); adds samples, rays and invalid samples to `stats`.
-void tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, const PathTraceOutput& out,
+// spp sets the strata); adds samples, rays and invalid samples to `stats`. Returns false if
+// out.stop turned true before every batch was done (what the batches done added stays).
+bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, const PathTraceOutput& out,
                       RenderStats& stats);
 
 }  // namespace erpt

@@ -11,6 +11,7 @@
 #include "erpt_integrator.h"
 #include "pmc_er_integrator.h"
 #include "path_integrator.h"
+#include "sample_passes.h"
 
 namespace erpt {
 
@@ -105,10 +106,7 @@ struct WeightedSum {
 
 RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats& stats, Clock::time_point start) {
   if (!(s.timeBudget > 0) || s.timeBudget > 1e7) throw UsageError("--time must be in (0, 10000000] seconds");
-  RenderSettings pass = s;
-  pass.timeBudget = 0;
-  pass.onPass = nullptr;
-  pass.progress = nullptr;
+  RenderSettings pass = subRenderSettings(s);
   if (redistributes(s.integrator)) {
     // One pilot for all passes (it is independent of every one of them), and e_d from the
     // configured spp, so each pass runs the configured mutations per seed.
@@ -141,6 +139,12 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
     RenderStats ps;
     const RgbImage img = renderOnce(scene, pass, ps);
     const double passSeconds = secondsSince(passStart);
+    // A stopped pass counts with the sample passes it completed (sample_passes.h).
+    if (ps.partial) {
+      stats.partial = true;
+      passSpp = ps.spp;
+      if (passSpp == 0) break;
+    }
     image.add(img, passSpp);
     extras.resize(ps.extraImages.size());
     for (size_t k = 0; k < ps.extraImages.size(); ++k)  // counts add up, images average
@@ -163,10 +167,18 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
       notRendering += secondsSince(t);
     }
     if (s.progress) s.progress(std::min(1.0, elapsed / s.timeBudget));
+    if (stats.partial) break;
     const double perSample = passSeconds / passSpp;  // includes the pass's fixed costs: cautious
     const double fits = (s.timeBudget - elapsed) / perSample;
     if (!(fits >= 1)) break;
     passSpp = int(std::min({2.0 * passSpp, std::floor(fits), double(1 << 24)}));
+  }
+  if (stats.spp == 0) {  // stopped in the first pass
+    RgbImage none;
+    none.width = s.width, none.height = s.height;
+    none.pixels.assign(size_t(s.width) * size_t(s.height), Color(0.0f));
+    stats.extraImages.clear();
+    return none;
   }
   for (size_t k = 0; k < extras.size(); ++k)
     stats.extraImages[k].second = extras[k].mean(stats.extraImages[k].first == "proposals" ? 1.0 : stats.spp);
@@ -186,6 +198,10 @@ RenderSettings resolveSettings(const Scene& scene, RenderSettings s) {
 
 const char* integratorNames() { return "path, direct, erpt, pmc-er"; }
 
+bool integratorStopsEarly(const std::string& integrator) {
+  return integrator == "path" || integrator == "direct" || integrator == "erpt";
+}
+
 RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
   RenderSettings s = resolveSettings(scene, requested);
   const Clock::time_point start = Clock::now();
@@ -196,12 +212,18 @@ RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats
     ThreadPool pool(s.threads);  // the BVH build uses the threads the render may use
     s.tracer = std::make_shared<const Tracer>(scene);
   }
+  if (s.share.split() && (s.timeBudget != 0 || !integratorStopsEarly(s.integrator)))
+    throw UsageError(s.timeBudget != 0 ? "a render over several processes needs a fixed --spp, not --time"
+                                       : "integrator '" + s.integrator + "' cannot run over several processes yet");
+  if ((s.resume || s.onPasses) && (s.timeBudget != 0 || !integratorStopsEarly(s.integrator)))
+    throw UsageError(s.timeBudget != 0 ? "checkpoints need a fixed --spp, not --time"
+                                       : "integrator '" + s.integrator + "' cannot checkpoint or resume yet");
   RgbImage image;
   if (s.timeBudget != 0) {
     image = renderForTime(scene, s, stats, start);
   } else {
     image = renderOnce(scene, s, stats);
-    stats.spp = s.spp;
+    if (!integratorStopsEarly(s.integrator)) stats.spp = s.spp;  // else the passes it completed
     stats.passes = 1;
   }
   stats.seconds = secondsSince(start);

@@ -5,6 +5,7 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
 
 #include "image_formats.h"
 
@@ -19,6 +20,7 @@ bool writeExr(const std::string& path, const RgbImage& image, std::string& error
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
     for (const char* c : kRgb) header.channels().insert(c, Imf::Channel(Imf::FLOAT));
+    for (const auto& [name, value] : image.metadata) header.insert(name, Imf::StringAttribute(value));
     Imf::FrameBuffer frame;
     char* base = reinterpret_cast<char*>(const_cast<Color*>(image.pixels.data()));
     for (int c = 0; c < 3; ++c)
@@ -59,6 +61,9 @@ bool readExr(const std::string& path, RgbImage& image, std::string& error) {
                    Imf::Slice::Make(Imf::FLOAT, base + c * sizeof(float), window, sizeof(Color), sizeof(Color) * size_t(width)));
     file.setFrameBuffer(frame);
     file.readPixels(window.min.y, window.max.y);
+    for (auto it = file.header().begin(); it != file.header().end(); ++it)
+      if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+        image.metadata.emplace_back(it.name(), text->value());
     return true;
   } catch (const std::exception& e) {
     error = e.what();

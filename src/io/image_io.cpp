@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -78,6 +79,17 @@ void writeImageAtomic(const std::string& path, const RgbImage& image) {
   writeAtomic(path, [&](const std::string& tmp, std::string& error) {
     return ext == ".exr" ? image_formats::writeExr(tmp, image, error)
                          : image_formats::writeWithOiio(tmp, image.width, image.height, true, image.pixels.data(), error);
+  });
+}
+
+void writeBytesAtomic(const std::string& path, const std::vector<uint8_t>& bytes) {
+  writeAtomic(path, [&](const std::string& tmp, std::string& error) {
+    FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) return error = std::strerror(errno), false;
+    const bool written = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+    const bool closed = std::fclose(f) == 0;
+    if (!written || !closed) return error = "write failed", false;
+    return true;
   });
 }
 

@@ -22,10 +22,12 @@ void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixels, co
   for (size_t i = range.begin; i < range.end; ++i) {
     uint32_t pixel = pixels[i], s = samples[i];
     uint64_t key = sampleKey(ctx.seed, pixel, s);
-    // Sample s takes stratum s in x and a per-pixel permuted stratum in y.
-    uint32_t pixelKey = uint32_t(streamKey(ctx.seed, pixel, ~0ull));
-    float ux = (float(s) + uniformFloat(key, kDimFilmX)) / float(spp);
-    float uy = (float(permuteIndex(s, spp, pixelKey)) + uniformFloat(key, kDimFilmY)) / float(spp);
+    // Sample s takes a stratum in x and one in y, each by its own per-pixel permutation (a
+    // Latin hypercube). Permuting x too makes every sample uniform over the pixel on its own,
+    // so the first k of the spp samples are an unbiased render at k spp (sample passes).
+    const uint32_t keyX = uint32_t(streamKey(ctx.seed, pixel, ~1ull)), keyY = uint32_t(streamKey(ctx.seed, pixel, ~0ull));
+    float ux = (float(permuteIndex(s, spp, keyX)) + uniformFloat(key, kDimFilmX)) / float(spp);
+    float uy = (float(permuteIndex(s, spp, keyY)) + uniformFloat(key, kDimFilmY)) / float(spp);
     filmX[i] = float(pixel % uint32_t(ctx.width)) + 0.5f + ctx.filter.sampleOffset(std::min(ux, 0x1.fffffep-1f));
     filmY[i] = float(pixel / uint32_t(ctx.width)) + 0.5f + ctx.filter.sampleOffset(std::min(uy, 0x1.fffffep-1f));
   }

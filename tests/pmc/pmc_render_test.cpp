@@ -44,7 +44,8 @@ Scene plasticBox() { return loadScene(test::sourceDir() + "/tests/data/plastic-b
 // rare in a PMC-ER render as in a path-traced one of its spp; a dozen renders of 8 spp can
 // all miss them in one block (measured: z -5.0 in one block for seeds 5300-5311 with either
 // flow, -1.0 once 24 more renders are added). Hence 16 renders of 16 spp on the plastic box,
-// and 16 for the balance flow, which keeps energy closer to where the pool found it.
+// and 24 for the balance flow, which keeps energy closer to where the pool found it (with 16,
+// a change of the camera samples' strata alone moved its mean z^2 from under 2 to 2.07).
 void blockByBlock(const Scene& scene, PmcFlow flow, PmcAdapt adapt, uint64_t seed, int spp, int runs) {
   test::expectMatchesPathTracerBlockByBlock(scene, pmcSettings(spp, flow, adapt, 1000), runs, seed);
 }
@@ -61,7 +62,7 @@ TEST(StatisticalPmc, PlasticBoxEqualDepositionMatchesPathTracerBlockByBlock) {
   blockByBlock(plasticBox(), PmcFlow::EqualDeposition, PmcAdapt::Region, 5200, 16, 16);
 }
 TEST(StatisticalPmc, PlasticBoxBalanceMatchesPathTracerBlockByBlock) {
-  blockByBlock(plasticBox(), PmcFlow::Balance, PmcAdapt::Region, 5300, 16, 16);
+  blockByBlock(plasticBox(), PmcFlow::Balance, PmcAdapt::Region, 5300, 16, 24);
 }
 // The paper's per-member adaptation: a state-dependent kernel, not f-invariant in general
 // (docs/pmc-er.md); no bias was detected at this precision (see the README's results; on the

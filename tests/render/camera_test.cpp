@@ -141,7 +141,7 @@ TEST(ThinLens, RaysLeaveTheDiskAndMeetOnThePlaneOfFocus) {
 // from second moments: a uniform disk of radius R has mean r^2 = R^2 / 2, and blurring adds
 // second moments.)
 TEST(ThinLens, DefocusBlurHasTheCircleOfConfusionsRadius) {
-  auto renderAt = [](float aperture, float emitterDistance) {
+  auto renderAt = [](float aperture, float emitterDistance, int spp = 256) {
     test::TempDir dir;
     const std::string xml = std::string(R"(<scene version="3.0.0">
       <sensor type="thinlens"><float name="fov" value="22.62"/>
@@ -156,7 +156,7 @@ TEST(ThinLens, DefocusBlurHasTheCircleOfConfusionsRadius) {
     const Scene scene = loadScene(dir.write("s.xml", xml));
     RenderSettings s;
     s.integrator = "path";
-    s.spp = 256;
+    s.spp = spp;
     s.seed = 3;
     RenderStats stats;
     return render(scene, s, stats);
@@ -178,7 +178,10 @@ TEST(ThinLens, DefocusBlurHasTheCircleOfConfusionsRadius) {
   };
   double pinholeEnergy, pinholeRadius, blurEnergy, blurRadius, focusEnergy, focusRadius;
   measure(renderAt(0, 4), pinholeEnergy, pinholeRadius);
-  measure(renderAt(0.1f, 4), blurEnergy, blurRadius);
+  // Out of focus, a camera sample hits the small emitter only through part of the lens: its
+  // energy is a noisy estimate (about 1.8% standard deviation at 256 spp), so it gets 1024 spp
+  // (0.9%) for the 3% bound below.
+  measure(renderAt(0.1f, 4, 1024), blurEnergy, blurRadius);
   measure(renderAt(0.1f, 2), focusEnergy, focusRadius);
   // tan(fov / 2) = 0.2: 160 pixels per unit of the image plane; R = 0.1 (1/2 - 1/4) = 0.025 -> 4 px.
   EXPECT_NEAR(std::sqrt(blurRadius * blurRadius - pinholeRadius * pinholeRadius), 4.0, 0.4);

@@ -1,6 +1,8 @@
 // Path tracer stages on small hand-built queues.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "erpt/camera.h"
 #include "erpt/scene_loader.h"
 #include "erpt/stages.h"
@@ -108,6 +110,47 @@ TEST(StageGenerate, FilmPositionsAreStratifiedPerPixel) {
       EXPECT_EQ(xStrata[k], 1) << "pixel " << p << " x-stratum " << k;
       EXPECT_EQ(yStrata[k], 1) << "pixel " << p << " y-stratum " << k;
     }
+  }
+}
+
+// Sample passes (sample_passes.h) stop after the first k of a pixel's spp samples: those must
+// be uniform over the pixel on their own, not just all spp together (with sample s in x
+// stratum s, the first quarter of the samples would all lie in the pixel's left quarter).
+// Chi-square of the in-pixel offsets of the first k samples of 1024 pixels over 16 bins
+// (15 degrees of freedom: mean 15, the bound 40 has p ~ 3e-4).
+TEST(StageGenerate, TheFirstSamplesOfEveryPixelAreUniformOverIt) {
+  test::TempDir dir;
+  Scene scene = loadScene(dir.write("s.xml", R"(<scene version="3.0.0"><shape type="rectangle"/>
+      <sensor type="perspective"><float name="fov" value="90"/><transform name="to_world"><translate z="-3"/></transform>
+      <film type="hdrfilm"><integer name="width" value="32"/><integer name="height" value="32"/></film></sensor></scene>)"));
+  const int spp = 16, w = 32, h = 32, bins = 16;
+  Camera camera(scene.camera, w, h);
+  PixelFilter box(FilterKind::Box);
+  LightSampler lights(scene);
+  StageContext ctx{scene, camera, box, lights, 42, w, spp, -1};
+  for (int first : {1, 4}) {
+    SCOPED_TRACE("the first " + std::to_string(first) + " samples");
+    const size_t n = size_t(w) * h * first;
+    std::vector<uint32_t> pixel(n), sample(n);
+    for (size_t i = 0; i < n; ++i) pixel[i] = uint32_t(i % (w * h)), sample[i] = uint32_t(i / (w * h));
+    RayQueue rays;
+    prepareRays(rays, n);
+    std::vector<float> fx(n), fy(n);
+    stageGenerateCameraRays(ctx, pixel.data(), sample.data(), rays, {0, n}, fx.data(), fy.data());
+    std::vector<double> countX(bins, 0), countY(bins, 0);
+    for (size_t i = 0; i < n; ++i) {
+      const double lx = fx[i] - double(pixel[i] % w), ly = fy[i] - double(pixel[i] / w);
+      countX[std::clamp(int(lx * bins), 0, bins - 1)] += 1;
+      countY[std::clamp(int(ly * bins), 0, bins - 1)] += 1;
+    }
+    const double expected = double(n) / bins;
+    double chiX = 0, chiY = 0;
+    for (int b = 0; b < bins; ++b) {
+      chiX += (countX[b] - expected) * (countX[b] - expected) / expected;
+      chiY += (countY[b] - expected) * (countY[b] - expected) / expected;
+    }
+    EXPECT_LT(chiX, 40.0);
+    EXPECT_LT(chiY, 40.0);
   }
 }
 

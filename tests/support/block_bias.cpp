@@ -19,7 +19,7 @@ RgbImage renderWith(const Scene& scene, const RenderSettings& s) {
 }  // namespace
 
 BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSettings settings, int runs, uint64_t seed,
-                                                    bool assertBounds) {
+                                                    bool assertBounds, const std::function<void()>& beforeEachRun) {
   settings.width = settings.height = 64;
   settings.filterSet = true;
   settings.filter = FilterKind::Box;
@@ -27,12 +27,15 @@ BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSe
   for (int k = 0; k < runs; ++k) {
     RenderSettings s = settings;
     s.seed = seed + uint64_t(k);
+    if (beforeEachRun) beforeEachRun();
     images.push_back(renderWith(scene, s));
   }
   for (int k = 0; k < 8; ++k) {
     RenderSettings s = settings;
     s.integrator = "path";
     s.spp = 512;
+    s.stop = nullptr;  // the reference renders run in full
+    s.onPasses = nullptr;
     s.seed = seed + 1000 + uint64_t(k);
     pathImages.push_back(renderWith(scene, s));
   }

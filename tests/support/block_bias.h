@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 
 #include "erpt/render.h"
 
@@ -15,7 +16,9 @@ struct BlockBiasResult {
 // unless `assertBounds` is false (then it only measures). Welch's z with variances from the
 // runs has slightly heavier tails than a normal one (mean z^2 about 1.15 when unbiased); 2.0 is
 // about four standard errors of that mean away.
+// `beforeEachRun` (when set) is called before each of the `runs` renders.
 BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSettings settings, int runs, uint64_t seed,
-                                                    bool assertBounds = true);
+                                                    bool assertBounds = true,
+                                                    const std::function<void()>& beforeEachRun = {});
 
 }  // namespace erpt::test
