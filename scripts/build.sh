@@ -11,8 +11,12 @@ if [ "${1:-}" = "--sanitize" ]; then
   # suppressions in tests/lsan.supp, which match them, cannot apply).
   bash scripts/setup.sh clang libclang-rt-14-dev llvm
   dir=build-sanitize
+  # Without MPI: Open MPI unloads its plugins at MPI_Finalize, so LeakSanitizer reports their
+  # allocations from unknown modules that no suppression can name. The MPI glue
+  # (src/cli/process_group.cpp) is tested in the Release suite; the split render itself here too
+  # (Resume.SplitRenders*, in one process).
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DERPT_SANITIZE=ON -DERPT_BUILD_BENCHMARKS=OFF \
-    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DERPT_LIBFUZZER=ON >/dev/null
+    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DERPT_LIBFUZZER=ON -DERPT_MPI=OFF >/dev/null
 else
   dir=build
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null

@@ -25,5 +25,5 @@ if [ "${1:-}" != "--release-only" ]; then
   # determinism, closed-form and CLI tests here).
   step "sanitizer tests" bash -c 'cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 \
     LSAN_OPTIONS=suppressions="$PWD/../tests/lsan.supp" ctest --output-on-failure -j2 \
-    -E "^Statistical(Erpt|Pmc|Film)\.|^StatisticalExactSphere\.ExactAndTessellated"'
+    -E "^Statistical(Erpt|Pmc|Film|Resume)\.|^StatisticalExactSphere\.ExactAndTessellated"'
 fi

@@ -78,6 +78,9 @@ struct RenderSettings {
   // Continue from this state (a checkpoint of the same scene and settings) instead of from
   // nothing: the result is bit-identical to the uninterrupted render.
   const RenderState* resume = nullptr;
+  // Sample passes run in groups of at least this many samples (0: 131072, one batch of the
+  // path tracer); states are saved and a stop falls back only between groups.
+  size_t passGroupSamples = 0;
   // One of several processes rendering the image together (path, direct, erpt): the returned
   // image, stats.spp and stats.samples are the whole render's, on every rank.
   RenderShare share;

@@ -26,7 +26,7 @@ class ProcessGroup {
 
  private:
   int rank_ = 0, size_ = 1;
-  bool joined_ = false;
+  [[maybe_unused]] bool joined_ = false;  // MPI_Init was called (MPI builds only)
 };
 
 }  // namespace erpt::cli

@@ -9,7 +9,9 @@ namespace {
 // path tracer's wavefront: fewer would leave threads idle).
 constexpr size_t kGroupSamples = 1 << 17;
 
-int passesPerGroup(size_t pixels) { return int(std::clamp<size_t>(kGroupSamples / std::max<size_t>(pixels, 1), 1, 1 << 20)); }
+int passesPerGroup(size_t pixels, size_t groupSamples) {
+  return int(std::clamp<size_t>((groupSamples ? groupSamples : kGroupSamples) / std::max<size_t>(pixels, 1), 1, 1 << 20));
+}
 }  // namespace
 
 PathSampleSet passSamples(const std::vector<uint32_t>& order, int first, int end, const RenderShare& share) {
@@ -64,7 +66,7 @@ RgbImage renderInSamplePasses(const RenderSettings& s, size_t pixels, RenderStat
     save(0);
   }
   boundary();
-  const int group = passesPerGroup(pixels);
+  const int group = passesPerGroup(pixels, s.passGroupSamples);
   while (done < total && !stopRequested(s.stop)) {
     const int end = std::min(total, done + group);
     const int first = done;

@@ -156,7 +156,7 @@ TEST(CompareCli, ShortRunGivesOneRowPerIntegratorAndAPlot) {
 // Mistakes are reported before anything renders, and nothing is written.
 TEST(CompareCli, BadArgumentsFailBeforeRendering) {
   test::TempDir dir;
-  writeImageAtomic(dir.file("ref24.exr"), RgbImage{24, 24, std::vector<Color>(24 * 24, Color(0.5f))});
+  writeImageAtomic(dir.file("ref24.exr"), RgbImage{24, 24, std::vector<Color>(24 * 24, Color(0.5f)), {}});
   const std::string base = "compare -q " + cornell() + " --width 16 --height 16 --time 0.2 --out " + dir.file("o");
   struct Case {
     std::string args, message;
