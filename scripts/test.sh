@@ -19,7 +19,7 @@ step "release tests" bash -c 'cd build && ctest --output-on-failure -j2'
 if [ "${1:-}" != "--release-only" ]; then
   step "sanitizer build" bash scripts/build.sh --sanitize
   # Leaks are checked too; tests/lsan.supp lists the third-party ones we cannot fix. This
-  # build is clang's, and its Fuzz.* tests are 60 s libFuzzer runs of each fuzz target. The long
+  # build is clang's, and its Fuzz.* tests are 45 s libFuzzer runs of each fuzz target. The long
   # statistical renders of ERPT, PMC-ER, the splatting films and exact-vs-tessellated spheres
   # run in the Release suite only (their code paths are covered by the stage, measure,
   # determinism, closed-form and CLI tests here).

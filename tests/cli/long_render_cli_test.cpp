@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <filesystem>
@@ -216,7 +217,7 @@ TEST(LongRenderCli, DisplayStreamsTheImageToTev) {
   std::string command;
   {
     test::TevTestServer server;
-    command = "render -q " + defaultScene() + " --width 640 --height 480 --spp " + std::to_string(16 / kSlowdown) +
+    command = "render -q " + defaultScene() + " --width 640 --height 480 --spp " + std::to_string(std::max(1, 4 / kSlowdown)) +
               " --display 127.0.0.1:" +
               std::to_string(server.port()) + " -o " + out;
     test::CommandResult r = test::runCli(command);

@@ -170,7 +170,7 @@ std::vector<pid_t> ranksOnceStarted(pid_t mpirunPid, const std::string& checkpoi
 TEST(MpiCli, PerRankCheckpointsResumeBitIdentically) {
   test::TempDir dir;
   const std::string ckpt = dir.file("r.ckpt"), out = dir.file("r.exr"), log = dir.file("log.txt");
-  const std::string args = " --width 128 --height 128 --spp 256 --integrator path --checkpoint " + ckpt +
+  const std::string args = " --width 128 --height 128 --spp 128 --integrator path --checkpoint " + ckpt +
                            " --checkpoint-every 0 -o ";
   const pid_t job = spawn(render(2, args + out), log);
   const std::vector<pid_t> ranks = ranksOnceStarted(job, ckpt, 120);
@@ -182,7 +182,7 @@ TEST(MpiCli, PerRankCheckpointsResumeBitIdentically) {
   const test::CommandResult resumed = run(mpirun(2) + ERPT_CLI_PATH + " resume -q " + ckpt);
   ASSERT_EQ(resumed.exitCode, 0) << readText(log) << resumed.output;
   const std::string whole = dir.file("whole.exr");
-  const test::CommandResult r = run(render(2, " --width 128 --height 128 --spp 256 --integrator path -o " + whole));
+  const test::CommandResult r = run(render(2, " --width 128 --height 128 --spp 128 --integrator path -o " + whole));
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_TRUE(sameBits(readImage(out), readImage(whole)));
 }
