@@ -49,12 +49,7 @@ class ErptChains {
   void load(ByteReader& r);
   // Split renders: the proposal tally becomes its total over the processes (`sum` adds doubles).
   template <class Sum>
-  void reduceTally(const Sum& sum) {
-    if (tally_.empty()) return;
-    std::vector<double> t(tally_.begin(), tally_.end());
-    sum(t);
-    for (size_t i = 0; i < t.size(); ++i) tally_[i] = uint32_t(t[i]);
-  }
+  void reduceTally(const Sum& sum) { erpt::reduceTally(tally_, sum); }
   // Energy added to the film so far (luminance), for tests.
   double depositedEnergy() const { return deposited_; }
   // The part of it deposited by seeds in place (InPlaceReason).

@@ -42,6 +42,16 @@ inline uint32_t stepDim(uint32_t step, uint32_t use) { return step * kStepDims +
 struct ErptCounters {
   std::atomic<uint64_t> proposed[kMutationKindCount] = {}, accepted[kMutationKindCount] = {};  // by MutationKind
   std::atomic<uint64_t> rejected[kRejectReasonCount] = {};
+
+  // Render state (checkpoints, the state a stopped render falls back to).
+  void save(ByteWriter& w) const {
+    for (int k = 0; k < kMutationKindCount; ++k) w.put(proposed[k].load()), w.put(accepted[k].load());
+    for (int k = 0; k < kRejectReasonCount; ++k) w.put(rejected[k].load());
+  }
+  void load(ByteReader& r) {
+    for (int k = 0; k < kMutationKindCount; ++k) proposed[k] = r.get<uint64_t>(), accepted[k] = r.get<uint64_t>();
+    for (int k = 0; k < kRejectReasonCount; ++k) rejected[k] = r.get<uint64_t>();
+  }
 };
 
 // Every queue one chain step reads or writes, for `capacity` chain slots (all free).
@@ -165,6 +175,15 @@ struct DepositFilters {
   uint64_t discarded = 0;      // deposit records thrown away
   double discardedEnergy = 0;  // their luminance
 };
+
+// Split renders: a proposal tally becomes its total over the processes (`sum` as Film::reduce's).
+template <class Sum>
+void reduceTally(std::vector<uint32_t>& tally, const Sum& sum) {
+  if (tally.empty()) return;
+  std::vector<double> t(tally.begin(), tally.end());
+  sum(t);
+  for (size_t i = 0; i < t.size(); ++i) tally[i] = uint32_t(t[i]);
+}
 
 // Adds the deposit records of the slots in `range` to the film in slot order, splatting each
 // over the pixels the filter reaches, after the noise filters (which update the chains' run

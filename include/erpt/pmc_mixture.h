@@ -12,6 +12,7 @@
 
 #include <vector>
 
+#include "erpt/byte_stream.h"
 #include "erpt/erpt_stages.h"
 #include "erpt/pmc_settings.h"
 
@@ -42,6 +43,9 @@ class PmcMixture final : public MutationChooser {
   // uniform).
   void setRegionTable(const std::vector<double>& sums, double prior);
   const std::vector<float>& regionTable() const { return table_; }
+  // Render state (a checkpoint holds the table the training population built).
+  void save(ByteWriter& w) const { w.putVector(table_); }
+  void load(ByteReader& r) { r.getVector(table_, table_.size()); }
   // The weights the proposal of `slot` at film position (x, y) uses.
   const float* weightsFor(size_t slot, float filmX, float filmY) const;
 

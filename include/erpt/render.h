@@ -81,13 +81,10 @@ struct RenderSettings {
   // Sample passes run in groups of at least this many samples (0: 131072, one batch of the
   // path tracer); states are saved and a stop falls back only between groups.
   size_t passGroupSamples = 0;
-  // One of several processes rendering the image together (path, direct, erpt): the returned
+  // One of several processes rendering the image together: the returned
   // image, stats.spp and stats.samples are the whole render's, on every rank.
   RenderShare share;
 };
-
-// Whether an integrator supports RenderSettings::stop, onPasses and resume.
-bool integratorStopsEarly(const std::string& integrator);
 
 struct RenderStats {
   double seconds = 0;

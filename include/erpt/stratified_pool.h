@@ -27,4 +27,18 @@ struct StratifiedPool {
   }
 };
 
+// Some rounds of a pool: `count` rounds first, first + stride, ... (a group of sample passes
+// of one rank: sample_passes.h). Position k of the rounds is position index(k) of the pool.
+struct PoolRounds {
+  StratifiedPool pool;
+  uint32_t first = 0, stride = 1, count = 0;
+
+  static PoolRounds all(const StratifiedPool& pool) { return PoolRounds{pool, 0, 1, pool.spp}; }
+  size_t size() const { return size_t(pool.pixels) * count; }
+  size_t index(size_t k) const {
+    return size_t(first + stride * uint32_t(k / pool.pixels)) * pool.pixels + k % pool.pixels;
+  }
+  void at(size_t k, uint32_t& pixel, uint32_t& sample) const { pool.at(index(k), pixel, sample); }
+};
+
 }  // namespace erpt

@@ -230,9 +230,6 @@ int runRender(const RenderArgs& given) {
   Scene scene = loadSceneFor(a);
   RenderSettings s = settingsFromArgs(a, scene);
   const bool longRender = !a.checkpoint.empty() || a.writePartial > 0 || a.resumeFrom || !a.display.empty();
-  if (longRender && !integratorStopsEarly(s.integrator))
-    throw UsageError("--checkpoint, --write-partial, --display and resume are not supported by --integrator " +
-                     s.integrator + " yet");
   if (longRender && a.time > 0) throw UsageError("--write-partial and --display need a fixed --spp, not --time");
   const uint64_t fingerprint = longRender ? sceneFingerprint(scene) : 0;
   if (group.size() > 1) s.share = group.share();
@@ -248,7 +245,7 @@ int runRender(const RenderArgs& given) {
   }
   Progress progress(!a.quiet && group.leader());
   s.progress = [&](double f) { progress.update(f); };
-  const StopOnSignal stop(integratorStopsEarly(s.integrator));
+  const StopOnSignal stop;
   s.stop = stop.flag();
   const RenderSettings resolved = resolveSettings(scene, s);
   const int ranks = group.size(), ownSpp = (resolved.spp - group.rank() + ranks - 1) / ranks;  // this rank's passes

@@ -42,7 +42,7 @@ void installSignalHandlers() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
-StopOnSignal::StopOnSignal(bool enabled) { stopEnabled.store(enabled); }
+StopOnSignal::StopOnSignal() { stopEnabled.store(true); }
 StopOnSignal::~StopOnSignal() { stopEnabled.store(false); }
 const std::atomic<bool>* StopOnSignal::flag() const { return &stopRequested; }
 int StopOnSignal::signal() const { return stopSignal.load(); }

@@ -12,7 +12,7 @@ void installSignalHandlers();
 
 class StopOnSignal {
  public:
-  explicit StopOnSignal(bool enabled);  // false: signals keep ending the process at once
+  StopOnSignal();
   ~StopOnSignal();
   const std::atomic<bool>* flag() const;
   // The signal that asked to stop (0: none) and the exit status for it (128 + signal).

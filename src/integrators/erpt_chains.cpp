@@ -107,8 +107,7 @@ void ErptChains::save(ByteWriter& w) const {
   w.put(config_.depositEnergy);
   w.put(seedCounter_), w.put(chainCounter_);
   w.put(deposited_), w.put(inPlaceDeposited_);
-  for (int k = 0; k < kMutationKindCount; ++k) w.put(counters_.proposed[k].load()), w.put(counters_.accepted[k].load());
-  for (int k = 0; k < kRejectReasonCount; ++k) w.put(counters_.rejected[k].load());
+  counters_.save(w);
   w.put(filters_.discarded), w.put(filters_.discardedEnergy);
   w.putVector(tally_);
 }
@@ -117,8 +116,7 @@ void ErptChains::load(ByteReader& r) {
   r.get(config_.depositEnergy);
   r.get(seedCounter_), r.get(chainCounter_);
   r.get(deposited_), r.get(inPlaceDeposited_);
-  for (int k = 0; k < kMutationKindCount; ++k) counters_.proposed[k] = r.get<uint64_t>(), counters_.accepted[k] = r.get<uint64_t>();
-  for (int k = 0; k < kRejectReasonCount; ++k) counters_.rejected[k] = r.get<uint64_t>();
+  counters_.load(r);
   r.get(filters_.discarded), r.get(filters_.discardedEnergy);
   r.getVector(tally_, tally_.size());
   std::fill(q_.chains.stepsLeft.begin(), q_.chains.stepsLeft.end(), 0u);

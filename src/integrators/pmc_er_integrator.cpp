@@ -20,6 +20,7 @@
 #include "erpt_integrator.h"
 #include "pmc_population.h"
 #include "render_setup.h"
+#include "sample_passes.h"
 
 namespace erpt {
 
@@ -46,12 +47,40 @@ void validatePmcSettings(const PmcSettings& p, const ErptSettings& e) {
     throw UsageError("--max-consecutive needs moving chains: it does not apply to --pmc-flow balance");
 }
 
+namespace {
+// Region adaptation: the training population (own seed, own pool) learns the table of
+// mixture weights per region; independent of the render, so the frozen table is too.
+void trainRegionTable(const Scene& scene, const RenderSettings& s, const ErptStepContext& ctx, PmcMixture& mixture,
+                      RenderStats& stats) {
+  const PmcSettings& p = s.pmc;
+  PmcStats& ps = stats.pmc;
+  const uint32_t pixels = uint32_t(s.width) * uint32_t(s.height);
+  RenderSettings ts = subRenderSettings(s);
+  ts.seed = streamKey(s.seed, kTrainStream, 0);
+  const double positions = double(p.population) * (1.0 + p.trainIterations * p.resampleRate);
+  ts.spp = int(std::clamp(std::ceil(positions / pixels), 1.0, double(1 << 20)));
+  RenderSetup trainSetup(scene, ts);
+  PmcSettings tp = p;
+  tp.adapt = PmcAdapt::Off;
+  PmcMixture uniform(tp, s.width, s.height);
+  RenderStats trainStats;
+  PmcPopulation trainer(trainSetup, PmcPopulation::Config{ctx, tp, ts.seed, nullptr}, uniform, trainStats);
+  trainer.run(PoolRounds::all(StratifiedPool{pixels, uint32_t(ts.spp), ts.seed}), p.trainIterations);
+  mixture.setRegionTable(trainer.regionSums(), 1.0);
+  ps.trainingIterations = trainStats.pmc.trainingIterations;
+  ps.trainSeconds = trainStats.pmc.trainSeconds + trainStats.pmc.regenerateSeconds + trainStats.pmc.resampleSeconds;
+  stats.rays += trainStats.rays;
+  for (int r = 0; r < mixture.regionCount(); ++r)
+    for (int k = 0; k < mixture.components(); ++k)
+      ++ps.alphaHistogram[k][std::min(kAlphaBins - 1, int(mixture.regionTable()[size_t(r * mixture.components() + k)] * kAlphaBins))];
+}
+}  // namespace
+
 RgbImage renderPmcEr(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
   const PmcSettings& p = s.pmc;
   validatePmcSettings(p, s.erpt);
   ErptStats& es = stats.erpt;
   PmcStats& ps = stats.pmc;
-  es.pilotEnergy = s.erpt.knownPilotEnergy >= 0 ? s.erpt.knownPilotEnergy : erptPilotEnergy(scene, s, stats);
 
   RenderSetup setup(scene, s);
   FilmDensity density(setup.filter, s.width, s.height);
@@ -65,40 +94,65 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& s, RenderStats& s
   const ErptStepContext ctx{MeasureContext{scene, setup.lights, setup.camera, density}, chain};
   const uint32_t pixels = uint32_t(s.width) * uint32_t(s.height);
   PmcMixture mixture(p, s.width, s.height);
-
-  if (p.adapt == PmcAdapt::Region) {
-    // Training: independent of the render (own seed, own pool), so the frozen table is too.
-    RenderSettings ts = s;
-    ts.seed = streamKey(s.seed, kTrainStream, 0);
-    const double positions = double(p.population) * (1.0 + p.trainIterations * p.resampleRate);
-    ts.spp = int(std::clamp(std::ceil(positions / pixels), 1.0, double(1 << 20)));
-    ts.progress = nullptr;
-    RenderSetup trainSetup(scene, ts);
-    PmcSettings tp = p;
-    tp.adapt = PmcAdapt::Off;
-    PmcMixture uniform(tp, s.width, s.height);
-    RenderStats trainStats;
-    PmcPopulation trainer(trainSetup, PmcPopulation::Config{ctx, tp, ts.seed, nullptr}, uniform, trainStats);
-    trainer.run(StratifiedPool{pixels, uint32_t(ts.spp), ts.seed}, p.trainIterations);
-    mixture.setRegionTable(trainer.regionSums(), 1.0);
-    ps.trainingIterations = trainStats.pmc.trainingIterations;
-    ps.trainSeconds = trainStats.pmc.trainSeconds + trainStats.pmc.regenerateSeconds + trainStats.pmc.resampleSeconds;
-    stats.rays += trainStats.rays;
-    for (int r = 0; r < mixture.regionCount(); ++r)
-      for (int k = 0; k < mixture.components(); ++k)
-        ++ps.alphaHistogram[k][std::min(kAlphaBins - 1, int(mixture.regionTable()[size_t(r * mixture.components() + k)] * kAlphaBins))];
+  RgbImage direct;
+  // Pilot, training and the direct pass come before the passes (a resumed render has their
+  // results in its state). A split render runs them even when stopped: its ranks must make
+  // the same collective calls.
+  if (!s.resume && (!stopRequested(s.stop) || s.share.split())) {
+    es.pilotEnergy = s.erpt.knownPilotEnergy >= 0 ? s.erpt.knownPilotEnergy : erptPilotEnergy(scene, s, stats);
+    if (p.adapt == PmcAdapt::Region) trainRegionTable(scene, s, ctx, mixture, stats);
+    direct = renderDirectPass(scene, s, stats);
   }
 
   PmcPopulation population(setup, PmcPopulation::Config{ctx, p, s.seed, &setup.film}, mixture, stats);
-  population.run(StratifiedPool{pixels, uint32_t(s.spp), streamKey(s.seed, kPoolStream, 0)}, -1, s.progress);
+  const StratifiedPool pool{pixels, uint32_t(s.spp), streamKey(s.seed, kPoolStream, 0)};
+  const uint32_t rank = uint32_t(s.share.rank), ranks = uint32_t(std::max(1, s.share.ranks));
+  SamplePassHooks passes;
+  passes.save = [&](ByteWriter& w) {
+    w.put(es), w.put(ps);
+    w.put(stats.samples), w.put(stats.rays), w.put(stats.invalidSamples);
+    w.putVector(direct.pixels);
+    mixture.save(w);
+    setup.film.save(w);
+    population.save(w);
+  };
+  passes.load = [&](ByteReader& r) {
+    r.get(es), r.get(ps);
+    r.get(stats.samples), r.get(stats.rays), r.get(stats.invalidSamples);
+    const size_t directPixels = s.erpt.directSamples > 0 ? size_t(pixels) : 0;
+    r.getVector(direct.pixels, directPixels);
+    direct.width = directPixels ? s.width : 0, direct.height = directPixels ? s.height : 0;
+    mixture.load(r);
+    setup.film.load(r);
+    population.load(r);
+  };
+  // Passes [first, end) of this rank are pool rounds rank + ranks * [first, end): the
+  // population runs over them to its end, so the state after the group holds no member.
+  passes.run = [&](int first, int end, const std::function<void(double)>& progress) {
+    const PoolRounds rounds{pool, rank + ranks * uint32_t(first), ranks, uint32_t(end - first)};
+    return population.run(rounds, -1, progress, s.stop);
+  };
+  passes.reduce = [&](const RenderShare& share) {
+    setup.film.reduce(share.sumAcrossRanks);
+    population.reduce(share.sumAcrossRanks);
+    sumCounters(share, {&stats.samples, &stats.rays, &stats.invalidSamples, &es.mutations, &es.deposits, &es.rays,
+                        &ps.iterations, &ps.drainIterations, &ps.poolSize, &ps.poolUsed, &ps.candidates,
+                        &ps.inPlaceSeeds, &ps.membersBorn, &ps.eliminated, &ps.split, &ps.steps});
+  };
+  auto image = [&](int done, std::vector<std::pair<std::string, RgbImage>>* extras) {
+    return redistributionImage(s, setup.film.resolve(double(done)), direct,
+                               s.erpt.pmFilterRadius >= 0 ? &population.proposalTally() : nullptr, extras);
+  };
+  passes.image = [&](int done) { return image(done, nullptr); };
+  renderInSamplePasses(s, pixels, stats, passes);
   es.erptSeconds = ps.chainSeconds + ps.resampleSeconds;
   // Eq. 4 with the steps the render took: what each would deposit if all were equal.
   const double steps = double(ps.steps);
-  ps.depositEnergy = steps > 0 ? es.pilotEnergy * double(pixels) * double(s.spp) / steps : 0;
+  ps.depositEnergy = steps > 0 ? es.pilotEnergy * double(pixels) * double(stats.spp) / steps : 0;
   es.depositEnergy = ps.depositEnergy;
+  if (stats.spp == 0) return passes.image(1);  // stopped before the first pass: black
   stats.extraImages.emplace_back("strategy", population.strategyImage());
-  return finishRedistribution(scene, s, stats, setup.film.resolve(double(s.spp)),
-                              s.erpt.pmFilterRadius >= 0 ? &population.proposalTally() : nullptr);
+  return image(stats.spp, &stats.extraImages);
 }
 
 }  // namespace erpt

@@ -13,7 +13,8 @@ namespace erpt {
 
 namespace {
 constexpr size_t kGrain = 256;
-constexpr uint64_t kMemberStream = 0x6d656d626572ull, kPickStream = 0x7069636bull, kCombStream = 0x636f6d62ull;
+constexpr uint64_t kMemberStream = 0x6d656d626572ull, kPickStream = 0x7069636bull, kCombStream = 0x636f6d62ull,
+                   kRunStream = 0x72756eull;
 
 double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
@@ -67,20 +68,30 @@ PmcPopulation::PmcPopulation(const RenderSetup& tracing, const Config& config, P
   for (int i = 0; i < components_; ++i) pmc_.radii[i] = mixture.radii()[size_t(i)];
 }
 
-void PmcPopulation::run(const StratifiedPool& pool, int maxIterations, const std::function<void(double)>& progress) {
+bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::function<void(double)>& progress,
+                        const std::atomic<bool>* stop) {
   const PmcSettings& s = config_.pmc;
-  pmc_.poolSize += pool.size();
+  // Each run its own member streams and combs; a pick is keyed by its position in the whole
+  // pool, unique over runs and ranks. (The first run of a render keeps the render's seed.)
+  runSeed_ = rounds.first == 0 ? config_.seed : streamKey(config_.seed, kRunStream, rounds.first);
+  chainCounter_ = 0;
+  poolCursor_ = 0;
+  std::fill(energy_.begin(), energy_.end(), 0.0);  // after a stopped run, what it held is dropped
+  candidates_.clear();
+  candidateEnergy_.clear();
+  pmc_.poolSize += rounds.size();
   const size_t perIteration = std::max<size_t>(1, size_t(std::llround(s.resampleRate * double(slots()))));
   const int drain = drainIterations(s.resampleRate);
-  regenerate(pool, std::min(slots(), pool.size()));
+  regenerate(rounds, std::min(slots(), rounds.size()));
   resample(0, slots());
   int drained = 0;
   size_t members = slots();
   for (uint64_t it = 1;; ++it) {
+    if (stop && stop->load(std::memory_order_relaxed)) return false;
     iterate();
     if (maxIterations >= 0 && it >= uint64_t(maxIterations)) break;
-    if (poolCursor_ < pool.size()) {
-      regenerate(pool, std::min(perIteration, pool.size() - poolCursor_));
+    if (poolCursor_ < rounds.size()) {
+      regenerate(rounds, std::min(perIteration, rounds.size() - poolCursor_));
     } else if (drained++ >= drain) {
       break;
     } else {
@@ -90,11 +101,11 @@ void PmcPopulation::run(const StratifiedPool& pool, int maxIterations, const std
       members = std::max<size_t>(1, size_t(std::ceil(double(members) * (1 - s.resampleRate))));
     }
     resample(it, members);
-    if (progress) progress(double(poolCursor_) / double(std::max<size_t>(1, pool.size())));
+    if (progress) progress(double(poolCursor_) / double(std::max<size_t>(1, rounds.size())));
   }
   if (config_.film) depositRemaining();
   pmc_.meanDeposit = depositSteps_ > 0 ? depositSum_ / double(depositSteps_) : 0;
-  if (config_.film) pmc_.steps += depositSteps_;
+  if (config_.film) pmc_.steps = depositSteps_;
   for (int k = 0; k < kMutationKindCount; ++k) {
     stats_.erpt.proposed[k] = counters_.proposed[k];
     stats_.erpt.accepted[k] = counters_.accepted[k];
@@ -102,16 +113,40 @@ void PmcPopulation::run(const StratifiedPool& pool, int maxIterations, const std
   for (int r = 0; r < kRejectReasonCount; ++r) stats_.erpt.rejected[r] = counters_.rejected[r];
   stats_.erpt.discardedDeposits = filters_.discarded;
   stats_.erpt.discardedEnergy = filters_.discardedEnergy;
+  return true;
 }
 
-void PmcPopulation::regenerate(const StratifiedPool& pool, size_t count) {
+void PmcPopulation::save(ByteWriter& w) const {
+  counters_.save(w);
+  w.put(filters_.discarded), w.put(filters_.discardedEnergy);
+  w.put(deposited_), w.put(depositSum_), w.put(depositSteps_);
+  w.putVector(tally_);
+  w.putVector(stratCount_), w.putVector(stratRadius_), w.putVector(stratAccept_);
+}
+
+void PmcPopulation::load(ByteReader& r) {
+  counters_.load(r);
+  r.get(filters_.discarded), r.get(filters_.discardedEnergy);
+  r.get(deposited_), r.get(depositSum_), r.get(depositSteps_);
+  r.getVector(tally_, tally_.size());
+  r.getVector(stratCount_, stratCount_.size());
+  r.getVector(stratRadius_, stratRadius_.size());
+  r.getVector(stratAccept_, stratAccept_.size());
+}
+
+void PmcPopulation::reduce(const std::function<void(std::vector<double>&)>& sum) {
+  reduceTally(tally_, sum);
+  sum(stratCount_), sum(stratRadius_), sum(stratAccept_);
+}
+
+void PmcPopulation::regenerate(const PoolRounds& rounds, size_t count) {
   const auto start = std::chrono::steady_clock::now();
   const size_t first = poolCursor_;
   SeedStore store;
   PathTraceOutput out;
   out.seeds = &store;
-  out.seedSink = [&](SeedStore& batch) { absorb(batch, first); };
-  const PathSampleSet samples{count, [&](size_t k, uint32_t& pixel, uint32_t& sample) { pool.at(first + k, pixel, sample); }};
+  out.seedSink = [&](SeedStore& batch) { absorb(batch, rounds, first); };
+  const PathSampleSet samples{count, [&](size_t k, uint32_t& pixel, uint32_t& sample) { rounds.at(first + k, pixel, sample); }};
   RenderStats traced;
   tracePathSamples(tracing_, samples, out, traced);
   poolCursor_ += count;
@@ -123,7 +158,7 @@ void PmcPopulation::regenerate(const StratifiedPool& pool, size_t count) {
   pmc_.regenerateSeconds += secondsSince(start);
 }
 
-void PmcPopulation::absorb(SeedStore& batch, size_t firstPoolIndex) {
+void PmcPopulation::absorb(SeedStore& batch, const PoolRounds& rounds, size_t first) {
   const ErptStepContext& ctx = config_.step;
   const bool excludeDirect = ctx.settings.directSamples > 0;
   // One candidate per pool position: of its seeds that a chain can hold, one chosen with
@@ -156,7 +191,7 @@ void PmcPopulation::absorb(SeedStore& batch, size_t firstPoolIndex) {
   for (size_t i = 0; i < batch.size(); ++i) {
     if (!(energy[i] > 0)) continue;
     const uint32_t p = batch.seeds.path[i];
-    const double u = double(uniformFloat(streamKey(config_.seed, kPickStream, firstPoolIndex + p), 0)) * total[p];
+    const double u = double(uniformFloat(streamKey(config_.seed, kPickStream, rounds.index(first + p)), 0)) * total[p];
     cumulative[p] += energy[i];
     lastEligible[p] = int64_t(i);
     if (chosen[p] < 0 && cumulative[p] > u) chosen[p] = int64_t(i);
@@ -192,7 +227,7 @@ void PmcPopulation::resample(uint64_t iteration, size_t members) {
   weights.insert(weights.end(), candidateEnergy_.begin(), candidateEnergy_.end());
   double total = 0;
   for (double w : weights) total += w;
-  const double u = double(uniformFloat(streamKey(config_.seed, kCombStream, iteration), 0));
+  const double u = double(uniformFloat(streamKey(runSeed_, kCombStream, iteration), 0));
   const std::vector<uint32_t> counts = systematicCounts(weights, members, u);
   const double tau = total / double(members);
   std::vector<double> energy(n, 0.0), alphaSum(n * k, 0.0);
@@ -208,7 +243,7 @@ void PmcPopulation::resample(uint64_t iteration, size_t members) {
         spareVertices_.copyRow(slot * kMaxChainVertices + j, q_.chainVertices, i * kMaxChainVertices + j);
       if (c > 0) {
         // A copy moves on with its own random stream.
-        spareChains_.key[slot] = streamKey(config_.seed, kMemberStream, chainCounter_++);
+        spareChains_.key[slot] = streamKey(runSeed_, kMemberStream, chainCounter_++);
         spareChains_.step[slot] = 0;
         ++pmc_.split;
       }
@@ -223,7 +258,7 @@ void PmcPopulation::resample(uint64_t iteration, size_t members) {
     pmc_.split += copies > 1 ? copies - 1 : 0;
     for (uint32_t c = 0; c < copies; ++c, ++slot) {
       loadChainFromSeed(spareChains_, spareVertices_, slot, candidates_, j,
-                        streamKey(config_.seed, kMemberStream, chainCounter_++), 0, 0);
+                        streamKey(runSeed_, kMemberStream, chainCounter_++), 0, 0);
       energy[slot] = tau;  // new members start with uniform alpha (zero sums)
     }
   }

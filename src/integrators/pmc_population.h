@@ -6,11 +6,14 @@
 //   the next r * population positions of the stratified pool are traced by the wavefront path
 //   tracer (one batch) and become candidates;
 //   members and candidates are resampled by energy into the slots (pmc_resampling.h).
-// When the pool is used up the population drains for a few iterations without new members
-// (resampled into fewer slots each time, as its energy falls), then every member deposits
-// what it still holds where it stands.
+// When the positions are used up the population drains for a few iterations without new
+// members (resampled into fewer slots each time, as its energy falls), then every member
+// deposits what it still holds where it stands. A render runs the population once per group
+// of sample passes (pmc_er_integrator.cpp), so that between groups no member is in flight
+// and the state is the film plus the accumulators kept here.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <vector>
 
@@ -34,10 +37,20 @@ class PmcPopulation {
   // `tracing`: the path tracer's setup (its stage context keys and stratifies pool samples).
   PmcPopulation(const RenderSetup& tracing, const Config& config, PmcMixture& mixture, RenderStats& stats);
 
-  // Runs until the pool is used up and the population drained, then deposits what the
-  // members still hold where they stand. maxIterations >= 0 (training): stops after that many
-  // iterations and deposits nothing at the end.
-  void run(const StratifiedPool& pool, int maxIterations = -1, const std::function<void(double)>& progress = {});
+  // Runs over the positions of `rounds` until they are used up and the population drained,
+  // then deposits what the members still hold where they stand. maxIterations >= 0
+  // (training): stops after that many iterations and deposits nothing at the end. Returns
+  // false when `stop` was set before the end (the film and the accumulators then hold part of
+  // the run: the caller loads the state it saved before it).
+  bool run(const PoolRounds& rounds, int maxIterations = -1, const std::function<void(double)>& progress = {},
+           const std::atomic<bool>* stop = nullptr);
+
+  // Render state between runs: statistics, tally and strategy sums (not the members: there
+  // are none between runs).
+  void save(ByteWriter& w) const;
+  void load(ByteReader& r);
+  // Split renders: the tally and the strategy sums become their totals over the processes.
+  void reduce(const std::function<void(std::vector<double>&)>& sum);
 
   // Acceptance sums per region of the mixture and component (regions x K) of the proposals
   // made from members in the region (the Region table is built from a training run's).
@@ -50,8 +63,9 @@ class PmcPopulation {
 
  private:
   size_t slots() const { return q_.chains.size(); }
-  void regenerate(const StratifiedPool& pool, size_t count);
-  void absorb(SeedStore& batch, size_t firstPoolIndex);
+  void regenerate(const PoolRounds& rounds, size_t count);
+  // `first`: the position (in the rounds) of the batch's path 0.
+  void absorb(SeedStore& batch, const PoolRounds& rounds, size_t first);
   // Members and candidates by energy into the first `members` slots (the rest stay free).
   void resample(uint64_t iteration, size_t members);
   void iterate();
@@ -68,8 +82,9 @@ class PmcPopulation {
   VertexQueue spareVertices_;
   ErptCounters counters_;
   DepositFilters filters_;
-  size_t poolCursor_ = 0;
-  uint64_t chainCounter_ = 0;
+  size_t poolCursor_ = 0;      // positions of the current run's rounds traced so far
+  uint64_t runSeed_ = 0;       // the current run's member streams and resampling comb
+  uint64_t chainCounter_ = 0;  // member streams started in the current run
   int components_;
   std::vector<double> energy_, alphaSum_;  // per slot; alphaSum_: K per slot
   std::vector<float> alpha_;               // Member adaptation: K per slot

@@ -198,10 +198,6 @@ RenderSettings resolveSettings(const Scene& scene, RenderSettings s) {
 
 const char* integratorNames() { return "path, direct, erpt, pmc-er"; }
 
-bool integratorStopsEarly(const std::string& integrator) {
-  return integrator == "path" || integrator == "direct" || integrator == "erpt";
-}
-
 RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
   RenderSettings s = resolveSettings(scene, requested);
   const Clock::time_point start = Clock::now();
@@ -212,18 +208,14 @@ RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats
     ThreadPool pool(s.threads);  // the BVH build uses the threads the render may use
     s.tracer = std::make_shared<const Tracer>(scene);
   }
-  if (s.share.split() && (s.timeBudget != 0 || !integratorStopsEarly(s.integrator)))
-    throw UsageError(s.timeBudget != 0 ? "a render over several processes needs a fixed --spp, not --time"
-                                       : "integrator '" + s.integrator + "' cannot run over several processes yet");
-  if ((s.resume || s.onPasses) && (s.timeBudget != 0 || !integratorStopsEarly(s.integrator)))
-    throw UsageError(s.timeBudget != 0 ? "checkpoints need a fixed --spp, not --time"
-                                       : "integrator '" + s.integrator + "' cannot checkpoint or resume yet");
+  if (s.share.split() && s.timeBudget != 0)
+    throw UsageError("a render over several processes needs a fixed --spp, not --time");
+  if ((s.resume || s.onPasses) && s.timeBudget != 0) throw UsageError("checkpoints need a fixed --spp, not --time");
   RgbImage image;
   if (s.timeBudget != 0) {
     image = renderForTime(scene, s, stats, start);
   } else {
-    image = renderOnce(scene, s, stats);
-    if (!integratorStopsEarly(s.integrator)) stats.spp = s.spp;  // else the passes it completed
+    image = renderOnce(scene, s, stats);  // stats.spp: the passes it completed
     stats.passes = 1;
   }
   stats.seconds = secondsSince(start);

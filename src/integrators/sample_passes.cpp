@@ -46,6 +46,7 @@ RgbImage renderInSamplePasses(const RenderSettings& s, size_t pixels, RenderStat
     state.passesDone = done;
     if (!keepState) return;
     ByteWriter w;
+    w.putString(s.integrator);
     hooks.save(w);
     state.bytes = w.take();
   };
@@ -58,6 +59,9 @@ RgbImage renderInSamplePasses(const RenderSettings& s, size_t pixels, RenderStat
       throw std::runtime_error("checkpoint holds " + std::to_string(s.resume->passesDone) + " passes of " +
                                std::to_string(total));
     ByteReader r(s.resume->bytes);
+    const std::string integrator = r.getString(64);
+    if (integrator != s.integrator)
+      throw std::runtime_error("the state is of a render with --integrator " + integrator + ", not " + s.integrator);
     hooks.load(r);
     r.expectEnd();
     done = s.resume->passesDone;
@@ -75,6 +79,7 @@ RgbImage renderInSamplePasses(const RenderSettings& s, size_t pixels, RenderStat
     };
     if (!hooks.run(first, end, progress)) {
       ByteReader r(state.bytes);
+      r.getString(64);  // the integrator's name
       hooks.load(r);
       break;
     }

@@ -1,4 +1,4 @@
-// Sample passes: how path, direct and erpt renders are ordered so that they can stop early,
+// Sample passes: how every integrator's render is ordered so that they can stop early,
 // show their progress and resume (docs/long-renders.md).
 //
 // Pass j gives every pixel its sample j (pixels in tiled order). After k passes every pixel

@@ -61,11 +61,12 @@ double channelMean(const RgbImage& img) {
 
 // Two ranks render passes 0, 2, 4, ... and 1, 3, 5, ...: the path tracer's samples are then the
 // same as one process's, and only the order of the film's (double) additions differs. ERPT's
-// chains have a random stream per rank: its image differs from one process's by noise only.
+// chains have a random stream per rank, and PMC-ER's populations run over each rank's groups
+// of passes: their images differ from one process's by noise only.
 // Either way the same K and seed give the same image on every run.
 TEST(MpiCli, TwoRanksGiveTheSameImageEveryRunAndMatchOneProcess) {
   test::TempDir dir;
-  for (const char* integrator : {"path", "erpt"}) {
+  for (const char* integrator : {"path", "erpt", "pmc-er"}) {
     SCOPED_TRACE(integrator);
     const std::string args = std::string(" --width 64 --height 64 --spp 16 --integrator ") + integrator + " -o ";
     const std::string a = dir.file(std::string(integrator) + "-a.exr"), b = dir.file(std::string(integrator) + "-b.exr"),

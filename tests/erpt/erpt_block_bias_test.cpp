@@ -25,7 +25,7 @@ ErptSettings everyPathByErpt(int mutationsPerPixel) {
 }
 
 // Sixteen ERPT renders (64x64, box filter, `spp` seeds per pixel, `erpt` options, seeds from
-// `seed`) against eight path-traced ones of 512 spp, per 8x8 block (support/block_bias.h).
+// `seed`) against 16 path-traced ones of 128 spp, per 8x8 block (support/block_bias.h).
 void expectErptMatchesPathTracerBlockByBlock(const Scene& scene, int spp, const ErptSettings& erpt, uint64_t seed) {
   RenderSettings s;
   s.integrator = "erpt";

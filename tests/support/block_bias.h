@@ -11,8 +11,8 @@ namespace erpt::test {
 struct BlockBiasResult {
   double meanSquare = 0, worst = 0;
 };
-// `runs` renders with `settings` (64x64, box filter, seeds seed, seed + 1, ...) against eight
-// path-traced ones of 512 spp, per 8x8 block; expects mean z^2 < 2.0 and worst |z| < 4.5
+// `runs` renders with `settings` (64x64, box filter, seeds seed, seed + 1, ...) against 16
+// path-traced ones of 128 spp, per 8x8 block; expects mean z^2 < 2.0 and worst |z| < 4.5
 // unless `assertBounds` is false (then it only measures). Welch's z with variances from the
 // runs has slightly heavier tails than a normal one (mean z^2 about 1.15 when unbiased); 2.0 is
 // about four standard errors of that mean away.
