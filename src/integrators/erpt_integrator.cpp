@@ -196,10 +196,4 @@ RgbImage redistributionImage(const RenderSettings& s, RgbImage image, const RgbI
   return filtered;
 }
 
-RgbImage finishRedistribution(const Scene& scene, const RenderSettings& s, RenderStats& stats, RgbImage image,
-                              const std::vector<uint32_t>* tally) {
-  const RgbImage direct = renderDirectPass(scene, s, stats);
-  return redistributionImage(s, std::move(image), direct, tally, &stats.extraImages);
-}
-
 }  // namespace erpt

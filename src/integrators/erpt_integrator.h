@@ -21,8 +21,5 @@ RgbImage renderDirectPass(const Scene& scene, const RenderSettings& settings, Re
 RgbImage redistributionImage(const RenderSettings& settings, RgbImage chains, const RgbImage& direct,
                              const std::vector<uint32_t>* tally,
                              std::vector<std::pair<std::string, RgbImage>>* extras);
-// PMC-ER, after its chains: the direct pass, then redistributionImage into stats.extraImages.
-RgbImage finishRedistribution(const Scene& scene, const RenderSettings& settings, RenderStats& stats, RgbImage image,
-                              const std::vector<uint32_t>* tally);
 
 }  // namespace erpt

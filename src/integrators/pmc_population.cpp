@@ -8,6 +8,7 @@
 #include "erpt/rng.h"
 #include "erpt/seed_checks.h"
 #include "path_integrator.h"
+#include "sample_passes.h"
 
 namespace erpt {
 
@@ -87,7 +88,7 @@ bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::
   int drained = 0;
   size_t members = slots();
   for (uint64_t it = 1;; ++it) {
-    if (stop && stop->load(std::memory_order_relaxed)) return false;
+    if (stopRequested(stop)) return false;
     iterate();
     if (maxIterations >= 0 && it >= uint64_t(maxIterations)) break;
     if (poolCursor_ < rounds.size()) {
