@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Installs dependencies if needed and builds. Usage: scripts/build.sh [--sanitize]
+# Installs dependencies if needed and builds. Usage: scripts/build.sh [--sanitize | --tsan]
 #   (default: Release in build/ with g++; --sanitize: Debug + ASan + UBSan with clang in
-#   build-sanitize/, with the fuzz targets built for libFuzzer)
+#   build-sanitize/, with the fuzz targets built for libFuzzer; --tsan: ThreadSanitizer with
+#   clang in build-tsan/, the renderer and the multi-threaded tests only)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
@@ -17,6 +18,13 @@ if [ "${1:-}" = "--sanitize" ]; then
   # (Resume.SplitRenders*, in one process).
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DERPT_SANITIZE=ON -DERPT_BUILD_BENCHMARKS=OFF \
     -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DERPT_LIBFUZZER=ON -DERPT_MPI=OFF >/dev/null
+elif [ "${1:-}" = "--tsan" ]; then
+  bash scripts/setup.sh clang libclang-rt-14-dev llvm
+  dir=build-tsan
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DERPT_TSAN=ON -DERPT_BUILD_BENCHMARKS=OFF \
+    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DERPT_MPI=OFF >/dev/null
+  cmake --build "$dir" --target erpt_tests
+  exit 0
 else
   dir=build
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null

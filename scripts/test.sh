@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs, builds as needed, and runs every test: the Release build, then the same suite
-# under AddressSanitizer + UndefinedBehaviorSanitizer (skip that with --release-only).
+# under AddressSanitizer + UndefinedBehaviorSanitizer, then the multi-threaded tests under
+# ThreadSanitizer (skip both sanitizer runs with --release-only).
 # Prints the time each step took at the end.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -19,11 +20,18 @@ step "release tests" bash -c 'cd build && ctest --output-on-failure -j2'
 if [ "${1:-}" != "--release-only" ]; then
   step "sanitizer build" bash scripts/build.sh --sanitize
   # Leaks are checked too; tests/lsan.supp lists the third-party ones we cannot fix. This
-  # build is clang's, and its Fuzz.* tests are 45 s libFuzzer runs of each fuzz target. The long
-  # statistical renders of ERPT, PMC-ER, the splatting films and exact-vs-tessellated spheres
-  # run in the Release suite only (their code paths are covered by the stage, measure,
-  # determinism, closed-form and CLI tests here).
+  # build is clang's, and its Fuzz.* tests are 20 s libFuzzer runs of each fuzz target
+  # (scripts/fuzz.sh runs them for longer). The long statistical renders of the path tracer
+  # (against the references and the scalar tracer), ERPT, PMC-ER, the splatting films and
+  # exact-vs-tessellated spheres run in the Release suite only (their code paths are covered by
+  # the stage, measure, determinism, closed-form and CLI tests here).
   step "sanitizer tests" bash -c 'cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 \
     LSAN_OPTIONS=suppressions="$PWD/../tests/lsan.supp" ctest --output-on-failure -j2 \
-    -E "^Statistical(Erpt|Pmc|Film|Resume)\.|^StatisticalExactSphere\.ExactAndTessellated"'
+    -E "^Statistical(Erpt|Pmc|Film|Resume|Path|PathVsScalar)\.|^StatisticalExactSphere\.ExactAndTessellated"'
+  # ThreadSanitizer on the multi-threaded code: the stage kernels and every test that renders
+  # one scene on 1 and 2 threads (path, direct, seed store, splat film, erpt, pmc-er, split
+  # renders). In this build the parallel loops run on std::threads (src/core/parallel.cpp).
+  step "tsan build" bash scripts/build.sh --tsan
+  step "tsan tests" bash -c 'cd build-tsan && TSAN_OPTIONS="halt_on_error=1 ignore_noninstrumented_modules=1 suppressions=$PWD/../tests/tsan.supp" \
+    ctest --output-on-failure -j2 -R "^(ErptStages|StageCompact|StageShadow|StageGenerate)\.|ThreadCount|^Resume\.Split"'
 fi

@@ -1,5 +1,7 @@
 // Thread pool control and the one loop every stage uses: forEachRange() splits [0, n) into
-// ranges across TBB threads and records the stage's time under its name.
+// ranges across the pool's threads and records the stage's time under its name. Every parallel
+// loop of the renderer goes through here, so the ThreadSanitizer build can swap the backend
+// (TBB normally; plain std::threads with ERPT_STD_THREADS, see parallel.cpp).
 #pragma once
 
 #include <cstddef>
@@ -7,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "erpt/soa.h"
 
@@ -38,5 +41,26 @@ class StageTimes {
 
 void forEachRange(const char* stage, size_t n, size_t grain, const std::function<void(IndexRange)>& fn,
                   StageTimes* times = nullptr);
+
+// Which of the pool's threads runs the calling task: a number below workerSlots(), never the
+// same for two tasks running at once.
+size_t workerIndex();
+size_t workerSlots();
+
+// Scratch that each thread keeps across the tasks it runs (a wavefront's queues): made on a
+// thread's first local() and kept until the object dies. Only the calling task may use it.
+template <class T>
+class PerThread {
+ public:
+  PerThread() : slots_(workerSlots()) {}
+  T& local() {
+    std::unique_ptr<T>& slot = slots_.at(workerIndex());
+    if (!slot) slot = std::make_unique<T>();
+    return *slot;
+  }
+
+ private:
+  std::vector<std::unique_ptr<T>> slots_;
+};
 
 }  // namespace erpt

@@ -18,9 +18,6 @@
 #include <numeric>
 #include <optional>
 
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
-
 #include "erpt/film.h"
 #include "erpt/film_splat.h"
 #include "erpt/stages.h"
@@ -222,7 +219,7 @@ bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
   uint64_t invalid = 0;
   BatchRadiance batch;
   PathWavefront shared;                                  // seed recording
-  tbb::enumerable_thread_specific<PathWavefront> local;  // rendering: one per thread
+  PerThread<PathWavefront> local;                        // rendering: one per thread
   std::mutex timesMutex;
 
   bool complete = true;
@@ -237,14 +234,17 @@ bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
       SeedRecording rec{*out.seeds, {}};
       traceSamples(setup, samples, first, n, n, shared, StageRunner{true, stats.stages}, batch, first, &rec, rayCount);
     } else {
-      tbb::parallel_for(size_t(0), (n + kChunkSamples - 1) / kChunkSamples, [&](size_t c) {
-        StageTimes times;
-        const size_t begin = first + c * kChunkSamples, count = std::min(kChunkSamples, first + n - begin);
-        traceSamples(setup, samples, begin, count, kTaskQueue, local.local(), StageRunner{false, times}, batch, first,
-                     nullptr, rayCount);
-        // Stage times of the tasks, in seconds of the whole pool (thread time / threads).
-        std::lock_guard<std::mutex> lock(timesMutex);
-        for (const auto& [stage, seconds] : times.all()) stats.stages.add(stage, seconds / threads);
+      // One task per chunk of samples, each on its thread's own wavefront.
+      forEachRange("path chunks", (n + kChunkSamples - 1) / kChunkSamples, 1, [&](IndexRange chunks) {
+        for (size_t c = chunks.begin; c < chunks.end; ++c) {
+          StageTimes times;
+          const size_t begin = first + c * kChunkSamples, count = std::min(kChunkSamples, first + n - begin);
+          traceSamples(setup, samples, begin, count, kTaskQueue, local.local(), StageRunner{false, times}, batch,
+                       first, nullptr, rayCount);
+          // Stage times of the tasks, in seconds of the whole pool (thread time / threads).
+          std::lock_guard<std::mutex> lock(timesMutex);
+          for (const auto& [stage, seconds] : times.all()) stats.stages.add(stage, seconds / threads);
+        }
       });
     }
 

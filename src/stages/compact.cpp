@@ -1,7 +1,6 @@
 // Stable stream compaction of the live slots, in two parallel passes: count survivors per
 // block, then (after an exclusive scan of the block counts) scatter them in order.
-#include <tbb/parallel_for.h>
-
+#include "erpt/parallel.h"
 #include "erpt/stages.h"
 #include "erpt/tracer.h"
 
@@ -11,14 +10,20 @@ size_t stageCompact(const PathSlotQueue& slots, const RayQueue& rays, PathSlotQu
                     size_t count, size_t grain, uint32_t* endedPaths) {
   const size_t blocks = (count + grain - 1) / grain;
   std::vector<size_t> offset(blocks + 1, 0);
-  tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+  // Each block is one task (grain 1: a block already holds `grain` slots).
+  auto forEachBlock = [blocks](const auto& perBlock) {
+    forEachRange("compact", blocks, 1, [&](IndexRange r) {
+      for (size_t b = r.begin; b < r.end; ++b) perBlock(b);
+    });
+  };
+  forEachBlock([&](size_t b) {
     size_t n = 0;
     for (size_t k = b * grain; k < std::min(count, (b + 1) * grain); ++k) n += slots.alive[k] != 0;
     offset[b + 1] = n;
   });
   for (size_t b = 0; b < blocks; ++b) offset[b + 1] += offset[b];
   const size_t kept = offset[blocks];
-  tbb::parallel_for(size_t(0), blocks, [&](size_t b) {
+  forEachBlock([&](size_t b) {
     size_t out = offset[b];
     size_t ended = b * grain - offset[b];  // slots before this block that did not survive
     for (size_t k = b * grain; k < std::min(count, (b + 1) * grain); ++k) {

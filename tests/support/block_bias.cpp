@@ -3,14 +3,21 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
 #include <vector>
 
+#include "erpt/checkpoint.h"
 #include "support/image_stats.h"
+#include "support/test_support.h"
 
 namespace erpt::test {
 
 namespace {
-constexpr int kReferenceRuns = 16, kReferenceSpp = 128;
+constexpr int kReferenceRuns = 16, kReferenceSpp = 128, kBlock = 8;
 
 RgbImage renderWith(const Scene& scene, const RenderSettings& s) {
   RenderStats stats;
@@ -18,23 +25,12 @@ RgbImage renderWith(const Scene& scene, const RenderSettings& s) {
   EXPECT_EQ(stats.invalidSamples, 0u);
   return img;
 }
-}  // namespace
 
-BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSettings settings, int runs, uint64_t seed,
-                                                    bool assertBounds, const std::function<void()>& beforeEachRun) {
-  settings.width = settings.height = 64;
-  settings.filterSet = true;
-  settings.filter = FilterKind::Box;
-  std::vector<RgbImage> images, pathImages;
-  for (int k = 0; k < runs; ++k) {
-    RenderSettings s = settings;
-    s.seed = seed + uint64_t(k);
-    if (beforeEachRun) beforeEachRun();
-    images.push_back(renderWith(scene, s));
-  }
-  // The reference: 16 renders of 128 spp. Its variance is a small part of the z-scores' (the
-  // renders under test are far noisier than 2048 path samples per pixel), so more spp would
-  // add little power: with half these (8 x 512 spp before) the denominator was ~5% smaller.
+// The reference: 16 path-traced renders of 128 spp. Its variance is a small part of the
+// z-scores' (the renders under test are far noisier than 2048 path samples per pixel; the
+// share is printed), so more spp would add little power.
+BlockStats renderReference(const Scene& scene, const RenderSettings& settings, uint64_t seed) {
+  std::vector<RgbImage> pathImages;
   for (int k = 0; k < kReferenceRuns; ++k) {
     RenderSettings s = settings;
     s.integrator = "path";
@@ -44,9 +40,90 @@ BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSe
     s.seed = seed + 1000 + uint64_t(k);
     pathImages.push_back(renderWith(scene, s));
   }
-  const BlockZScores z = blockZScores(images, pathImages, 8);
-  std::printf("%s: %zu blocks of 8x8: mean z^2 %.2f, worst |z| %.2f\n", settings.integrator.c_str(), z.z.size(),
-              z.meanSquare, z.worst);
+  return blockStats(pathImages, kBlock);
+}
+
+// What the reference depends on, as text: the scene (its file's bytes and geometry: the
+// checkpoint fingerprint), the camera (tests change it in code) and the path tracer's settings.
+std::string referenceKey(const Scene& scene, const RenderSettings& s, uint64_t seed) {
+  std::ostringstream key;
+  key.precision(9);
+  key << std::hex << sceneFingerprint(scene) << std::dec << " camera";
+  const CameraSettings& c = scene.camera;
+  for (double v : c.toWorld.m) key << ' ' << v;
+  key << ' ' << c.fovDegrees << ' ' << int(c.fovAxis) << ' ' << c.nearClip << ' ' << c.farClip << ' '
+      << c.apertureRadius << ' ' << c.focusDistance;
+  key << " size " << s.width << 'x' << s.height << " filter " << int(s.filter) << " film " << int(s.film)
+      << " max-depth " << s.maxDepth << " runs " << kReferenceRuns << " spp " << kReferenceSpp << " seeds "
+      << seed + 1000;
+  return key.str();
+}
+
+// tests/data/block-references/Suite.Test.txt (a test's second comparison adds ".2").
+std::string referenceFile() {
+  const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = std::string(info->test_suite_name()) + "." + info->name();
+  for (char& ch : name)
+    if (ch == '/') ch = '_';
+  static std::map<std::string, int> calls;
+  const int call = ++calls[name];
+  if (call > 1) name += "." + std::to_string(call);
+  return sourceDir() + "/tests/data/block-references/" + name + ".txt";
+}
+
+void writeReference(const std::string& path, const std::string& key, const BlockStats& stats) {
+  std::filesystem::create_directories(std::filesystem::path(path).parent_path());
+  std::ofstream out(path);
+  out << "# Per-block statistics (mean luminance sum of each 8x8 block and its variance of the mean) of "
+      << kReferenceRuns << " path-traced renders of " << kReferenceSpp << " spp, made by our path tracer.\n"
+      << "# Remade by: ERPT_WRITE_BLOCK_REFERENCES=1 build/tests/erpt_tests --gtest_filter='"
+      << std::filesystem::path(path).stem().string() << "'\n"
+      << "key " << key << '\n';
+  out.precision(17);
+  for (size_t k = 0; k < stats.mean.size(); ++k) out << stats.mean[k] << ' ' << stats.varianceOfMean[k] << '\n';
+  if (!out) ADD_FAILURE() << "could not write " << path;
+}
+
+// The stored statistics, or none when the file is missing or was made for another key.
+bool readReference(const std::string& path, const std::string& key, BlockStats& stats) {
+  std::ifstream in(path);
+  std::string line;
+  while (std::getline(in, line) && line.rfind('#', 0) == 0) {
+  }
+  if (line != "key " + key) return false;
+  for (double m, v; in >> m >> v;) stats.mean.push_back(m), stats.varianceOfMean.push_back(v);
+  return !stats.mean.empty();
+}
+}  // namespace
+
+BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSettings settings, int runs, uint64_t seed,
+                                                    bool assertBounds, const std::function<void()>& beforeEachRun) {
+  settings.width = settings.height = 64;
+  settings.filterSet = true;
+  settings.filter = FilterKind::Box;
+  // The path-traced reference is stored (it was half of the suite's statistical time): made
+  // again, and written, with ERPT_WRITE_BLOCK_REFERENCES set; a file that is missing or that
+  // was made for another scene, camera or settings fails the test.
+  const std::string file = referenceFile(), key = referenceKey(scene, settings, seed);
+  BlockStats reference;
+  if (std::getenv("ERPT_WRITE_BLOCK_REFERENCES")) {
+    reference = renderReference(scene, settings, seed);
+    writeReference(file, key, reference);
+  } else if (!readReference(file, key, reference)) {
+    ADD_FAILURE() << file << ": no stored reference for this scene and these settings; make it with "
+                  << "ERPT_WRITE_BLOCK_REFERENCES=1 (the file's header says how)";
+    return {};
+  }
+  std::vector<RgbImage> images;
+  for (int k = 0; k < runs; ++k) {
+    RenderSettings s = settings;
+    s.seed = seed + uint64_t(k);
+    if (beforeEachRun) beforeEachRun();
+    images.push_back(renderWith(scene, s));
+  }
+  const BlockZScores z = blockZScores(blockStats(images, kBlock), reference);
+  std::printf("%s: %zu blocks of 8x8: mean z^2 %.2f, worst |z| %.2f (the reference's share of the variance %.0f%%)\n",
+              settings.integrator.c_str(), z.z.size(), z.meanSquare, z.worst, 100 * z.secondShare);
   EXPECT_EQ(z.z.size(), 64u);
   if (assertBounds) {
     EXPECT_LT(z.meanSquare, 2.0);

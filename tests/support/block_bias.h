@@ -16,6 +16,10 @@ struct BlockBiasResult {
 // unless `assertBounds` is false (then it only measures). Welch's z with variances from the
 // runs has slightly heavier tails than a normal one (mean z^2 about 1.15 when unbiased); 2.0 is
 // about four standard errors of that mean away.
+// The path-traced side is stored per test in tests/data/block-references (its block means and
+// variances, with a key naming the scene's fingerprint, the camera and the settings): with
+// ERPT_WRITE_BLOCK_REFERENCES set in the environment the test renders it and writes the file;
+// otherwise a missing file, or one whose key differs (the scene or settings changed), fails.
 // `beforeEachRun` (when set) is called before each of the `runs` renders.
 BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSettings settings, int runs, uint64_t seed,
                                                     bool assertBounds = true,

@@ -23,42 +23,45 @@ std::vector<double> blockSums(const RgbImage& img, int block) {
   return sums;
 }
 
-struct MeanVariance {
-  double mean = 0, varianceOfMean = 0;
-};
-// Mean over runs of block k and the variance of that mean (sample variance / runs).
-MeanVariance ofRuns(const std::vector<std::vector<double>>& runs, size_t k) {
-  const double n = double(runs.size());
-  double sum = 0, sum2 = 0;
-  for (const auto& r : runs) sum += r[k];
-  const double mean = sum / n;
-  for (const auto& r : runs) sum2 += (r[k] - mean) * (r[k] - mean);
-  return {mean, sum2 / (n - 1) / n};
-}
-
 }  // namespace
 
-BlockZScores blockZScores(const std::vector<RgbImage>& a, const std::vector<RgbImage>& b, int block) {
-  if (a.size() < 2 || b.size() < 2) throw std::runtime_error("blockZScores: need at least two runs of each");
-  std::vector<std::vector<double>> sa, sb;
-  for (const RgbImage& i : a) sa.push_back(blockSums(i, block));
-  for (const RgbImage& i : b) sb.push_back(blockSums(i, block));
-  for (const auto& s : sa)
-    if (s.size() != sb[0].size()) throw std::runtime_error("blockZScores: size mismatch");
-  for (const auto& s : sb)
-    if (s.size() != sb[0].size()) throw std::runtime_error("blockZScores: size mismatch");
+BlockStats blockStats(const std::vector<RgbImage>& runs, int block) {
+  if (runs.size() < 2) throw std::runtime_error("blockStats: need at least two runs");
+  std::vector<std::vector<double>> sums;
+  for (const RgbImage& i : runs) sums.push_back(blockSums(i, block));
+  for (const auto& s : sums)
+    if (s.size() != sums[0].size()) throw std::runtime_error("blockStats: size mismatch");
+  const double n = double(runs.size());
+  BlockStats out;
+  for (size_t k = 0; k < sums[0].size(); ++k) {
+    double sum = 0, sum2 = 0;
+    for (const auto& r : sums) sum += r[k];
+    const double mean = sum / n;
+    for (const auto& r : sums) sum2 += (r[k] - mean) * (r[k] - mean);
+    out.mean.push_back(mean);
+    out.varianceOfMean.push_back(sum2 / (n - 1) / n);  // sample variance / runs
+  }
+  return out;
+}
+
+BlockZScores blockZScores(const BlockStats& a, const BlockStats& b) {
+  if (a.mean.size() != b.mean.size()) throw std::runtime_error("blockZScores: size mismatch");
   BlockZScores out;
-  for (size_t k = 0; k < sb[0].size(); ++k) {
-    const MeanVariance ma = ofRuns(sa, k), mb = ofRuns(sb, k);
-    const double v = ma.varianceOfMean + mb.varianceOfMean;
+  for (size_t k = 0; k < a.mean.size(); ++k) {
+    const double v = a.varianceOfMean[k] + b.varianceOfMean[k];
     if (!(v > 0)) continue;  // a black block in both
-    const double z = (ma.mean - mb.mean) / std::sqrt(v);
+    const double z = (a.mean[k] - b.mean[k]) / std::sqrt(v);
+    out.secondShare += b.varianceOfMean[k] / v;
     out.z.push_back(z);
     out.meanSquare += z * z;
     out.worst = std::max(out.worst, std::abs(z));
   }
-  if (!out.z.empty()) out.meanSquare /= double(out.z.size());
+  if (!out.z.empty()) out.meanSquare /= double(out.z.size()), out.secondShare /= double(out.z.size());
   return out;
+}
+
+BlockZScores blockZScores(const std::vector<RgbImage>& a, const std::vector<RgbImage>& b, int block) {
+  return blockZScores(blockStats(a, block), blockStats(b, block));
 }
 
 void expectBitIdentical(const RgbImage& a, const RgbImage& b) {

@@ -20,10 +20,21 @@ struct BlockZScores {
   std::vector<double> z;  // one per block with energy, row-major
   double meanSquare = 0;  // mean of z^2
   double worst = 0;       // max |z|
+  // The second set's part of the z denominators (its variance of the mean over the sum of
+  // both), averaged over the blocks: how much a noisier reference costs the test in power.
+  double secondShare = 0;
 };
 // Same size and every channel of every pixel equal, bit for bit (gtest failures otherwise).
 void expectBitIdentical(const RgbImage& a, const RgbImage& b);
 
 BlockZScores blockZScores(const std::vector<RgbImage>& a, const std::vector<RgbImage>& b, int block);
+
+// The same in two steps: each set's per-block mean luminance sum and the variance of that mean
+// (so that one side can be stored: support/block_bias.h).
+struct BlockStats {
+  std::vector<double> mean, varianceOfMean;
+};
+BlockStats blockStats(const std::vector<RgbImage>& runs, int block);
+BlockZScores blockZScores(const BlockStats& a, const BlockStats& b);
 
 }  // namespace erpt::test
