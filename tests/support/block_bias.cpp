@@ -26,9 +26,9 @@ RgbImage renderWith(const Scene& scene, const RenderSettings& s) {
   return img;
 }
 
-// The reference: 16 path-traced renders of 128 spp. Its variance is a small part of the
-// z-scores' (the renders under test are far noisier than 2048 path samples per pixel; the
-// share is printed), so more spp would add little power.
+// The reference: 16 path-traced renders of 128 spp. Its variance of the mean is 2-34% of the
+// tests' z denominators (printed by each test): fewer spp would cost real power where it is
+// largest (halving them at 34% shrinks z by 14%), more would add little.
 BlockStats renderReference(const Scene& scene, const RenderSettings& settings, uint64_t seed) {
   std::vector<RgbImage> pathImages;
   for (int k = 0; k < kReferenceRuns; ++k) {
