@@ -33,5 +33,5 @@ if [ "${1:-}" != "--release-only" ]; then
   # renders). In this build the parallel loops run on std::threads (src/core/parallel.cpp).
   step "tsan build" bash scripts/build.sh --tsan
   step "tsan tests" bash -c 'cd build-tsan && TSAN_OPTIONS="halt_on_error=1 ignore_noninstrumented_modules=1 suppressions=$PWD/../tests/tsan.supp" \
-    ctest --output-on-failure -j2 -R "^(ErptStages|StageCompact|StageShadow|StageGenerate)\.|ThreadCount|^Resume\.Split"'
+    ctest --output-on-failure -j2 -R "^(ErptStages|ErptLanes|ExactFilm|StageCompact|StageShadow|StageGenerate)\.|ThreadCount|^Resume\.Split"'
 fi

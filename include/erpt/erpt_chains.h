@@ -1,10 +1,20 @@
 // The chain machine of ERPT: turns seeds into Markov chains (equal deposition, paper figure
-// 6) and runs them as a wavefront over a fixed-size SoA chain queue. Finished chains retire
+// 6) and runs them as wavefronts over fixed-size SoA chain queues. Finished chains retire
 // and their slots are refilled from the seeds before every step, so steps run with a full
-// queue and memory stays bounded by the queue, whatever the image size.
+// queue and memory stays bounded by the queues, whatever the image size.
+//
+// Lanes: a render on T threads runs T chain queues ("lanes"), each stepped by one thread from
+// refill to deposit with no synchronisation with the others, which take the batch's chains
+// from a shared counter as their slots free up. A chain's random stream is keyed by its number
+// in the render, not by its lane or slot, and the lanes deposit into an ExactFilm, whose sums
+// do not depend on the order of the adds; so the image is the same bits whichever lane ran a
+// chain, for any thread count. (One queue for all threads, stepped stage by stage, spent a
+// fork-join per stage per step and ran its deposits and refills on one thread: 1.3-1.5x on 2
+// threads.)
 #pragma once
 
 #include <atomic>
+#include <memory>
 #include <vector>
 
 #include "erpt/byte_stream.h"
@@ -15,10 +25,10 @@
 
 namespace erpt {
 
-// Chain slots for a render on `threads` threads: 1024 per thread keeps a step's working set
-// (chain and proposal vertices, ~1.4 MB per thread) in cache; larger queues measured up to 2x
-// slower. Renders and bm_erpt's chain loop both use it.
-inline size_t erptChainSlots(int threads) { return size_t(1024) * size_t(threads < 1 ? 1 : threads); }
+// Chain slots per lane: 1024 keeps a step's working set (chain and proposal vertices, ~1.4 MB)
+// in one core's cache; larger queues measured up to 2x slower. Renders and bm_erpt's chain
+// loop both use it.
+constexpr size_t kErptLaneSlots = 1024;
 
 class ErptChains {
  public:
@@ -27,13 +37,17 @@ class ErptChains {
   struct Config {
     ErptStepContext step;
     uint64_t seed = 0;         // the render's seed (chain and seed random streams)
-    size_t capacity = 1024;    // chain slots (erptChainSlots)
-    double depositEnergy = 0;  // e_d (equal deposition)
+    size_t laneSlots = kErptLaneSlots;  // chain slots of each lane
+    double depositEnergy = 0;            // e_d (equal deposition)
     // When it turns true, consume() and finish() return false between steps (the render then
     // falls back to its last saved state: the chains left are dropped, never half-deposited).
     const std::atomic<bool>* stop = nullptr;
+    int lanes = 1;  // chain queues stepped at once (a render: its thread count)
   };
+  // Seeds deposited in place go to `film` (in seed order); the chains deposit into the
+  // machine's own ExactFilm: image() is the sum of both.
   ErptChains(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times);
+  ~ErptChains();
 
   // Starts floor(U + e / (m e_d)) chains for each seed of the batch (detailed balance: one,
   // depositing e / m per step; at most Config::maxChainsPerSeed, each then depositing
@@ -47,9 +61,16 @@ class ErptChains {
   // stream counters, deposit totals, tally, filter counts. load() also empties the queue.
   void save(ByteWriter& w) const;
   void load(ByteReader& r);
-  // Split renders: the proposal tally becomes its total over the processes (`sum` adds doubles).
+  // Everything deposited (the film given to the constructor and the chains' own film) over
+  // `samplesPerPixel`.
+  RgbImage image(double samplesPerPixel) const;
+  // Split renders: the chains' film and the proposal tally become their totals over the
+  // processes (`sum` adds doubles, as for Film::reduce).
   template <class Sum>
-  void reduceTally(const Sum& sum) { erpt::reduceTally(tally_, sum); }
+  void reduce(const Sum& sum) {
+    exact_.reduce(sum);
+    erpt::reduceTally(tally_, sum);
+  }
   // Energy added to the film so far (luminance), for tests.
   double depositedEnergy() const { return deposited_; }
   // The part of it deposited by seeds in place (InPlaceReason).
@@ -58,12 +79,20 @@ class ErptChains {
   const std::vector<uint32_t>& proposalTally() const { return tally_; }
 
  private:
+  struct Lane;
   const ErptSettings& settings() const { return config_.step.settings; }
-  bool refill();  // true when every slot is busy afterwards
-  void step();
+  // Runs every lane on the pool's threads: until the batch's chains are all in a queue
+  // (drain = false) or until no chain is left (drain = true). False: stopped.
+  bool runLanes(bool drain);
+  bool runLane(Lane& lane, bool drain);
+  // Loads the batch's next chains into the lane's free slots; true while chains of the batch
+  // are still waiting for a slot afterwards.
+  bool refill(Lane& lane);
+  void step(Lane& lane);
+  // Lane totals (rays, energy, filter counts, stage times, large deposits) into the machine's.
+  void mergeLanes();
   // Deposits `energy` (luminance) in the seed's colour at its film position, counted by `why`.
   void depositInPlace(const SeedStore& store, size_t seed, double energy, InPlaceReason why);
-  bool anyActive() const;
   bool stopped() const;
 
   const Tracer& tracer_;
@@ -71,21 +100,27 @@ class ErptChains {
   Film& film_;
   ErptStats& stats_;
   StageTimes& times_;
-  ErptQueues q_;
+  ExactFilm exact_;
+  std::vector<std::unique_ptr<Lane>> lanes_;
   ErptCounters counters_;
-  // Chains of the current batch waiting for a slot.
+  // Chains of the current batch: pending_[p] starts chains firstChain.. +copies of the batch,
+  // whose numbers in the render start at chainBase_; lanes take them through nextChain_.
   struct PendingSeed {
-    uint32_t seed, copiesLeft;
+    uint32_t seed, copies;
     float energyPerStep;  // luminance each step of these chains deposits
+    size_t firstChain;
   };
   const SeedStore* batch_ = nullptr;
   std::vector<PendingSeed> pending_;
   std::vector<uint8_t> zeroF_;  // per seed starting chains: seedHasZeroContribution()
-  size_t pendingNext_ = 0;
+  std::atomic<size_t> nextChain_{0};
+  size_t batchChains_ = 0;
+  uint64_t chainBase_ = 0;
   uint64_t seedCounter_ = 0, chainCounter_ = 0;
   double deposited_ = 0, inPlaceDeposited_ = 0;
   std::vector<uint32_t> tally_;
   DepositFilters filters_;
+  std::vector<LargeDeposit> large_;
 };
 
 }  // namespace erpt

@@ -10,6 +10,7 @@
 
 #include "erpt/mutation.h"
 #include "erpt/erpt_settings.h"
+#include "erpt/exact_film.h"
 #include "erpt/film.h"
 #include "erpt/seeds.h"
 #include "erpt/tracer.h"
@@ -185,13 +186,32 @@ void reduceTally(std::vector<uint32_t>& tally, const Sum& sum) {
   for (size_t i = 0; i < t.size(); ++i) tally[i] = uint32_t(t[i]);
 }
 
-// Adds the deposit records of the slots in `range` to the film in slot order, splatting each
-// over the pixels the filter reaches, after the noise filters (which update the chains' run
-// state). Sequential on purpose (the film sums stay in a fixed order; splitting the film into
-// strips of columns that threads fill in slot order was measured slower on 2 cores: a step's
-// deposits take ~15 ns each, about what binning them costs). Returns the total energy added
+// Where the deposit stage of one of ERPT's chain lanes splats its records while other lanes
+// do the same: an ExactFilm (sums independent of the order of the adds), and, for the rare
+// records too large for it, a list of them to add to a double film afterwards in the order of
+// (chain key, step, record): addLargeDeposits. Either way the image does not depend on which
+// lane ran a chain, or when.
+struct LargeDeposit {
+  uint64_t key;
+  uint32_t step, record;
+  float x, y;
+  Color energy;
+};
+struct ConcurrentDeposits {
+  ExactFilm& film;
+  std::vector<LargeDeposit>& large;
+};
+
+// Adds the deposit records of the slots in `range`, splatting each over the pixels the filter
+// reaches, after the noise filters (which update the chains' run state; the proposal tally is
+// counted atomically). To a Film: in slot order, for one thread (PMC-ER's population); to
+// ConcurrentDeposits: from any number of lanes at once. Returns the total energy added
 // (luminance).
 double applyDeposits(ChainQueue& chains, const ProposalQueue& proposals, const DepositQueue& deposits, IndexRange range,
                      const FilmDensity& density, Film& film, DepositFilters& filters);
+double applyDeposits(ChainQueue& chains, const ProposalQueue& proposals, const DepositQueue& deposits, IndexRange range,
+                     const FilmDensity& density, ConcurrentDeposits& target, DepositFilters& filters);
+// Sorts `large` by (key, step, record), splats it to `film` in that order and empties it.
+void addLargeDeposits(std::vector<LargeDeposit>& large, const FilmDensity& density, Film& film);
 
 }  // namespace erpt

@@ -2,36 +2,66 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <cmath>
 
 #include "erpt/chain_step.h"
+#include "erpt/parallel.h"
 #include "erpt/rng.h"
 #include "erpt/seed_checks.h"
 
 namespace erpt {
 
 namespace {
-constexpr size_t kGrain = 256;
 constexpr uint64_t kChainStream = 0x636861696eull, kSeedStream = 0x73656564ull;
 
 double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
+
+// The chains' film counts 2^-24 e_d (exact_film.h). Without e_d (the pilot found no energy)
+// only detailed balance runs chains; a fixed 2^-40 then, and what is too large for it goes
+// the large-deposit way.
+double exactFilmUnit(double depositEnergy) {
+  return depositEnergy > 0 && std::isfinite(depositEnergy) ? std::ldexp(depositEnergy, -24) : std::ldexp(1.0, -40);
+}
 }  // namespace
 
+// One chain queue and what its thread accumulates between merges (mergeLanes).
+struct ErptChains::Lane {
+  explicit Lane(size_t slots) : q(slots) {}
+  ErptQueues q;
+  StageTimes times;
+  DepositFilters filters;  // this lane's filter counts (the tally is shared)
+  std::vector<LargeDeposit> large;
+  double deposited = 0;
+  uint64_t rays = 0;
+};
+
 ErptChains::ErptChains(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times)
-    : tracer_(tracer), config_(config), film_(film), stats_(stats), times_(times), q_(config.capacity) {
+    : tracer_(tracer),
+      config_(config),
+      film_(film),
+      stats_(stats),
+      times_(times),
+      exact_(film.width(), film.height(), exactFilmUnit(config.depositEnergy), config.lanes > 1) {
   filters_.maxConsecutive = uint32_t(settings().maxConsecutive);
   if (settings().pmFilterRadius >= 0) {
     tally_.assign(size_t(film.width()) * size_t(film.height()), 0);
     filters_.proposalTally = &tally_;
   }
+  for (int l = 0; l < std::max(1, config.lanes); ++l) {
+    lanes_.push_back(std::make_unique<Lane>(config.laneSlots));
+    lanes_.back()->filters.maxConsecutive = filters_.maxConsecutive;
+    lanes_.back()->filters.proposalTally = filters_.proposalTally;
+  }
 }
+
+ErptChains::~ErptChains() = default;
 
 bool ErptChains::consume(const SeedStore& batch) {
   batch_ = &batch;
   pending_.clear();
-  pendingNext_ = 0;
   const double ed = config_.depositEnergy;
   const double m = double(settings().chainLength);
   const bool detailedBalance = config_.step.settings.flow == FlowRule::DetailedBalance;
@@ -73,6 +103,7 @@ bool ErptChains::consume(const SeedStore& batch) {
   forEachRange("erpt seed check", started.size(), 64, [&](IndexRange r) {
     for (size_t k = r.begin; k < r.end; ++k) zeroF_[k] = seedHasZeroContribution(config_.step, batch, started[k].seed);
   }, &times_);
+  size_t chains = 0;
   for (size_t k = 0; k < started.size(); ++k) {
     const Started& st = started[k];
     if (zeroF_[k]) {
@@ -80,25 +111,48 @@ bool ErptChains::consume(const SeedStore& batch) {
       depositInPlace(batch, st.seed, double(st.energy) * m * st.copies, kInPlaceZeroContribution);
       continue;
     }
-    stats_.chains += st.copies;
-    pending_.push_back(PendingSeed{st.seed, st.copies, st.energy});
+    pending_.push_back(PendingSeed{st.seed, st.copies, st.energy, chains});
+    chains += st.copies;
   }
-  refill();
-  while (pendingNext_ < pending_.size()) {
-    if (stopped()) return false;
-    step();
-    refill();
-  }
+  stats_.chains += chains;
+  // The batch's chains are numbered in seed order, as one queue would have loaded them.
+  chainBase_ = chainCounter_;
+  chainCounter_ += chains;
+  batchChains_ = chains;
+  nextChain_ = 0;
+  const bool done = runLanes(false);
   batch_ = nullptr;
-  return true;
+  return done;
 }
 
-bool ErptChains::finish() {
-  while (anyActive()) {
+bool ErptChains::finish() { return runLanes(true); }
+
+bool ErptChains::runLanes(bool drain) {
+  std::atomic<bool> stop{false};
+  forEachRange("erpt chains", lanes_.size(), 1, [&](IndexRange r) {
+    for (size_t l = r.begin; l < r.end; ++l)
+      if (!runLane(*lanes_[l], drain)) stop = true;
+  });
+  mergeLanes();
+  // The large deposits wait for the end of the group of passes: when they are added to the
+  // film they then do not depend on how far each lane had got when a batch's consume returned.
+  if (drain && !stop) addLargeDeposits(large_, config_.step.measure.film, film_);
+  return !stop;
+}
+
+bool ErptChains::runLane(Lane& lane, bool drain) {
+  for (;;) {
+    const bool waiting = refill(lane);
+    if (drain) {
+      bool active = false;
+      for (size_t i = 0; i < lane.q.chains.size() && !active; ++i) active = lane.q.chains.stepsLeft[i] > 0;
+      if (!active) return true;
+    } else if (!waiting) {
+      return true;  // the batch's chains are all in a queue: the next batch (or finish) runs them
+    }
     if (stopped()) return false;
-    step();
+    step(lane);
   }
-  return true;
 }
 
 bool ErptChains::stopped() const { return config_.stop && config_.stop->load(std::memory_order_relaxed); }
@@ -110,6 +164,7 @@ void ErptChains::save(ByteWriter& w) const {
   counters_.save(w);
   w.put(filters_.discarded), w.put(filters_.discardedEnergy);
   w.putVector(tally_);
+  exact_.save(w);
 }
 
 void ErptChains::load(ByteReader& r) {
@@ -119,34 +174,51 @@ void ErptChains::load(ByteReader& r) {
   counters_.load(r);
   r.get(filters_.discarded), r.get(filters_.discardedEnergy);
   r.getVector(tally_, tally_.size());
-  std::fill(q_.chains.stepsLeft.begin(), q_.chains.stepsLeft.end(), 0u);
+  exact_.load(r);
+  large_.clear();
+  for (auto& lane : lanes_) std::fill(lane->q.chains.stepsLeft.begin(), lane->q.chains.stepsLeft.end(), 0u);
   pending_.clear();
-  pendingNext_ = 0;
+  batchChains_ = 0;
+  nextChain_ = 0;
   batch_ = nullptr;
 }
 
-bool ErptChains::anyActive() const {
-  for (size_t i = 0; i < q_.chains.size(); ++i)
-    if (q_.chains.stepsLeft[i] > 0) return true;
-  return false;
+RgbImage ErptChains::image(double samplesPerPixel) const {
+  RgbImage img = film_.resolve(samplesPerPixel);
+  exact_.addTo(img, samplesPerPixel);
+  return img;
 }
 
-bool ErptChains::refill() {
+bool ErptChains::refill(Lane& lane) {
   auto start = std::chrono::steady_clock::now();
-  bool full = true;
-  for (size_t slot = 0; slot < q_.chains.size(); ++slot) {
-    if (q_.chains.stepsLeft[slot] > 0) continue;
-    if (pendingNext_ >= pending_.size()) {
-      full = false;
-      break;
+  ChainQueue& q = lane.q.chains;
+  size_t free = 0;
+  for (size_t slot = 0; slot < q.size(); ++slot) free += q.stepsLeft[slot] == 0;
+  const size_t next = nextChain_.load(std::memory_order_relaxed);
+  if (free > 0 && next < batchChains_) {
+    // At most a fair share of the chains still waiting, so that the last ones of a batch
+    // spread over the lanes instead of keeping one lane busy while the others finish.
+    const size_t share = (batchChains_ - next + lanes_.size() - 1) / lanes_.size();
+    const size_t take = std::min(free, std::max<size_t>(share, 16));
+    size_t k = nextChain_.fetch_add(take);
+    const size_t end = std::min(k + take, batchChains_);
+    if (k < end) {
+      // The seed entry holding chain k, then onwards.
+      size_t p = size_t(std::upper_bound(pending_.begin(), pending_.end(), k,
+                                         [](size_t c, const PendingSeed& e) { return c < e.firstChain; }) -
+                        pending_.begin()) - 1;
+      for (size_t slot = 0; slot < q.size() && k < end; ++slot) {
+        if (q.stepsLeft[slot] > 0) continue;
+        while (k >= pending_[p].firstChain + pending_[p].copies) ++p;
+        loadChainFromSeed(q, lane.q.chainVertices, slot, *batch_, pending_[p].seed,
+                          streamKey(config_.seed, kChainStream, chainBase_ + k), uint32_t(settings().chainLength),
+                          pending_[p].energyPerStep);
+        ++k;
+      }
     }
-    PendingSeed& p = pending_[pendingNext_];
-    loadChainFromSeed(q_.chains, q_.chainVertices, slot, *batch_, p.seed,
-                      streamKey(config_.seed, kChainStream, chainCounter_++), uint32_t(settings().chainLength), p.energyPerStep);
-    if (--p.copiesLeft == 0) ++pendingNext_;
   }
-  times_.add("erpt refill", secondsSince(start));
-  return full;
+  lane.times.add("erpt refill", secondsSince(start));
+  return nextChain_.load(std::memory_order_relaxed) < batchChains_;
 }
 
 void ErptChains::depositInPlace(const SeedStore& store, size_t seed, double energy, InPlaceReason why) {
@@ -156,16 +228,30 @@ void ErptChains::depositInPlace(const SeedStore& store, size_t seed, double ener
   inPlaceDeposited_ += added;
 }
 
-void ErptChains::step() {
-  const size_t c = q_.chains.size();
-  const ErptStepContext& ctx = config_.step;
-  const ChainStep chainStep{tracer_, ctx, &times_, kGrain};
-  const uint64_t rays = chainStep.run(q_, counters_);
-  stats_.rays += rays;
+void ErptChains::step(Lane& lane) {
+  // The lane is one thread's work: each stage runs over the whole queue as one range.
+  const ChainStep chainStep{tracer_, config_.step, &lane.times, lane.q.chains.size()};
+  lane.rays += chainStep.run(lane.q, counters_);
   auto start = std::chrono::steady_clock::now();
-  deposited_ += applyDeposits(q_.chains, q_.proposals, q_.deposits, IndexRange{0, c}, ctx.measure.film, film_, filters_);
-  times_.add("erpt deposit", secondsSince(start));
-  // Counters to stats.
+  ConcurrentDeposits target{exact_, lane.large};
+  lane.deposited += applyDeposits(lane.q.chains, lane.q.proposals, lane.q.deposits, IndexRange{0, lane.q.chains.size()},
+                                  config_.step.measure.film, target, lane.filters);
+  lane.times.add("erpt deposit", secondsSince(start));
+}
+
+void ErptChains::mergeLanes() {
+  for (auto& lane : lanes_) {
+    stats_.rays += lane->rays;
+    deposited_ += lane->deposited;
+    filters_.discarded += lane->filters.discarded;
+    filters_.discardedEnergy += lane->filters.discardedEnergy;
+    lane->rays = 0, lane->deposited = 0, lane->filters.discarded = 0, lane->filters.discardedEnergy = 0;
+    // Thread-seconds of the lanes, averaged: about the wall time each stage took.
+    for (const auto& [name, seconds] : lane->times.all()) times_.add(name, seconds / double(lanes_.size()));
+    lane->times = StageTimes{};
+    large_.insert(large_.end(), lane->large.begin(), lane->large.end());
+    lane->large.clear();
+  }
   uint64_t steps = 0;
   for (int k = 0; k < kMutationKindCount; ++k) {
     stats_.proposed[k] = counters_.proposed[k];

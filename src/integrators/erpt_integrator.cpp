@@ -92,12 +92,12 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
   // The chains' random streams: a rank of a split render has its own (its counters start at 0 too).
   const uint64_t chainSeed = s.share.split() ? streamKey(s.seed, kRankStream, uint64_t(s.share.rank)) : s.seed;
   ErptChains::Config config{ErptStepContext{MeasureContext{scene, setup.lights, setup.camera, density}, o}, chainSeed,
-                            erptChainSlots(setup.pool.threads()), es.depositEnergy, s.stop};
+                            kErptLaneSlots, es.depositEnergy, s.stop, setup.pool.threads()};
   ErptChains chains(setup.tracer, config, setup.film, es, stats.stages);
   if (stopRequested(s.stop) && !s.resume && !s.share.split()) {  // stopped in the pilot or the direct pass
     stats.spp = 0;
     stats.partial = true;
-    return redistributionImage(s, setup.film.resolve(1.0), RgbImage{}, nullptr, nullptr);
+    return redistributionImage(s, chains.image(1.0), RgbImage{}, nullptr, nullptr);
   }
 
   SeedStore store;
@@ -140,12 +140,12 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
   };
   passes.reduce = [&](const RenderShare& share) {
     setup.film.reduce(share.sumAcrossRanks);
-    chains.reduceTally(share.sumAcrossRanks);
+    chains.reduce(share.sumAcrossRanks);
     sumCounters(share, {&seedStats.samples, &seedStats.rays, &seedStats.invalidSamples, &es.seeds, &es.chains,
                         &es.mutations, &es.deposits, &es.rays, &es.cappedSeeds});
   };
   auto image = [&](int done, std::vector<std::pair<std::string, RgbImage>>* extras) {
-    return redistributionImage(s, setup.film.resolve(double(done)), direct,
+    return redistributionImage(s, chains.image(double(done)), direct,
                                o.pmFilterRadius >= 0 ? &chains.proposalTally() : nullptr, extras);
   };
   passes.image = [&](int done) { return image(done, nullptr); };

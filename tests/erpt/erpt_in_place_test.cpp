@@ -121,7 +121,7 @@ TEST(ErptInPlace, SeedWithZeroContributionIsDepositedInPlace) {
   EXPECT_EQ(stats.inPlace[kInPlaceZeroContribution], 1u);
   EXPECT_EQ(stats.chains, 0u);
   EXPECT_EQ(stats.mutations, 0u);
-  const RgbImage img = film.resolve(1.0);
+  const RgbImage img = chains.image(1.0);
   const uint32_t pixel = one.seeds.pixel[0];
   EXPECT_NEAR(luminance(img.pixels[pixel]) / luminance(one.contribution(0)), 1.0, 1e-5);
 }

@@ -132,7 +132,7 @@ TEST(ErptStages, DepositsSumToChainsTimesLengthTimesDepositEnergy) {
   // Seeds no chain can move (too long, zero f) deposit their own estimate where they are.
   const double expected = double(stats.chains) * 7 * 0.02 + chains.inPlaceEnergy();
   EXPECT_NEAR(chains.depositedEnergy() / expected, 1.0, 1e-5);
-  RgbImage img = film.resolve(1.0);
+  RgbImage img = chains.image(1.0);
   double onFilm = 0;
   for (const Color& c : img.pixels) onFilm += luminance(c);
   EXPECT_NEAR(onFilm / expected, 1.0, 1e-4);
