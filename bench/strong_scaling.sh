@@ -3,10 +3,11 @@
 # T threads and `mpirun -n T` processes x 1 thread, for path, erpt and pmc-er; whole-process wall
 # time, the median of RUNS runs of each, interleaved so that the machine's drift hits all alike.
 # Prints a Markdown table with the speed-ups over 1 thread.
-# Usage: bench/strong_scaling.sh [SCENE] [T] [RUNS]   (needs the Release build with MPI: build/erpt)
+# Usage: bench/strong_scaling.sh [SCENE] [T] [RUNS] [INTEGRATORS]   (needs the Release build with
+# MPI: build/erpt; INTEGRATORS: a space-separated subset of "path erpt pmc-er", the default)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scene=${1:-scenes/default/scene.xml} threads=${2:-2} runs=${3:-3}
+scene=${1:-scenes/default/scene.xml} threads=${2:-2} runs=${3:-3} integrators=${4:-path erpt pmc-er}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 mpirun=(mpirun --oversubscribe --allow-run-as-root -n "$threads")
@@ -22,8 +23,9 @@ median() { sort -n | awk '{v[NR]=$1} END{print (NR % 2) ? v[(NR + 1) / 2] : (v[N
 
 echo "| integrator | 1 process x 1 thread | 1 process x $threads threads | $threads ranks x 1 thread | threads speed-up | ranks speed-up |"
 echo "|---|---|---|---|---|---|"
-for row in "path 32" "erpt 4" "pmc-er 4"; do
-  read -r integrator spp <<<"$row"
+for integrator in $integrators; do
+  spp=4
+  [ "$integrator" = path ] && spp=32
   render=(build/erpt render "$scene" -q --integrator "$integrator" --spp "$spp" --seed 1)
   : >"$out/one" ; : >"$out/threads" ; : >"$out/ranks"
   for ((k = 0; k < runs; ++k)); do
