@@ -45,6 +45,9 @@ class LightSampler {
   // (p_light * p_area).
   float pdfArea(uint32_t primitive, Vec3 ref, Vec3 p, Vec3 n) const;
   float pickProbabilityOfEmitter(int emitter) const;
+  // pdfArea for a point of area emitter `emitter` (a triangle mesh or a sphere), which every
+  // primitive of a uniformly bright emitter shares; 0 for an emitter sample() never picks.
+  float pdfAreaOfEmitter(int emitter, Vec3 ref, Vec3 p, Vec3 n) const;
   // Radiance an area light emits from surface point `sp` towards direction `w` (one-sided:
   // along the geometric normal's side).
   Color emitted(const SurfacePoint& sp, Vec3 w) const;
@@ -71,6 +74,7 @@ class LightSampler {
   std::vector<float> cdf_;  // normalized, cdf_.back() == 1
   std::vector<float> primitiveProbability_;  // per world primitive id (0 if not emissive; instanced ids are past it)
   std::vector<float> emitterProbability_;   // per point / environment emitter
+  std::vector<int64_t> emitterPrimitive_;   // per emitter: one of its light-sampled primitives, -1 none
   float environmentProbability_ = 0;
   const Emitter* environment_ = nullptr;  // the environment emitter, when it can be picked
   float sceneRadius_ = 1;

@@ -62,13 +62,17 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
   double running = 0;
   primitiveProbability_.assign(scene.worldPrimitiveCount(), 0.0f);
   emitterProbability_.assign(scene.emitters.size(), 0.0f);
+  emitterPrimitive_.assign(scene.emitters.size(), -1);
   for (size_t i = 0; i < items_.size(); ++i) {
     running += weights[i];
     cdf_.push_back(float(running / total));
     float p = float(weights[i] / total);
     const Kind kind = items_[i].kind;
-    if (kind == Kind::Triangle || kind == Kind::Sphere) primitiveProbability_[items_[i].index] = p;
-    else emitterProbability_[items_[i].index] = p;
+    if (kind == Kind::Triangle || kind == Kind::Sphere) {
+      primitiveProbability_[items_[i].index] = p;
+      int64_t& first = emitterPrimitive_[size_t(scene.emitterOf(items_[i].index))];
+      if (first < 0) first = items_[i].index;
+    } else emitterProbability_[items_[i].index] = p;
     if (kind == Kind::Environment) {
       environmentProbability_ = p;
       environment_ = &scene.emitters[items_[i].index];
@@ -127,6 +131,13 @@ float LightSampler::pdfArea(uint32_t primitive, Vec3 ref, Vec3 p, Vec3 n) const 
 }
 
 float LightSampler::pickProbabilityOfEmitter(int emitter) const { return emitterProbability_[emitter]; }
+
+float LightSampler::pdfAreaOfEmitter(int emitter, Vec3 ref, Vec3 p, Vec3 n) const {
+  if (emitter < 0 || size_t(emitter) >= emitterPrimitive_.size() || emitterPrimitive_[size_t(emitter)] < 0) return 0.0f;
+  // A primitive's pick probability is its share of the power, pi area lum(radiance): per unit
+  // area the same for every primitive of one emitter.
+  return pdfArea(uint32_t(emitterPrimitive_[size_t(emitter)]), ref, p, n);
+}
 
 float LightSampler::pdfEnvironment(Vec3 direction) const {
   if (environmentProbability_ == 0) return 0.0f;

@@ -31,6 +31,18 @@ Color evalAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo) {
   return bsdfEval(b.material, b.colors, b.frame.toLocal(wi), b.frame.toLocal(wo));
 }
 
+float pdfAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo) {
+  if (v.material < 0) return 0.0f;
+  LocalBsdf b = bsdfAt(c, v);
+  return bsdfPdf(b.material, b.colors, b.frame.toLocal(wi), b.frame.toLocal(wo));
+}
+
+bool specularLobeAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo, Color& value, float& probability) {
+  if (v.material < 0) return false;
+  LocalBsdf b = bsdfAt(c, v);
+  return bsdfDeltaLobe(b.material, b.colors, b.frame.toLocal(wi), b.frame.toLocal(wo), value, probability);
+}
+
 // Value of the Dirac lobe taking wi to wo at a specular vertex (radiance transport); black if
 // the material has no such lobe. `adjoint`: the importance-transport value instead.
 Color specularAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo, bool adjoint) {

@@ -12,6 +12,12 @@ Color evalAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo);
 // Value of the Dirac lobe taking wi to wo at a specular vertex (radiance transport); black
 // off the lobe. `adjoint`: the importance-transport value instead.
 Color specularAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo, bool adjoint);
+// The solid-angle density with which BSDF sampling at non-specular vertex v picks wo (the lobe
+// choice included), as the path tracer samples it.
+float pdfAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo);
+// At a specular vertex: the Dirac lobe's value (radiance transport) and the probability that
+// BSDF sampling picks that lobe; false off every lobe.
+bool specularLobeAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo, Color& value, float& probability);
 // Radiance (area light, environment) or intensity (point light) a light vertex sends along w.
 Color emittedAlong(const MeasureContext& c, const PathVertex& light, Vec3 w);
 bool isPointLight(const MeasureContext& c, const PathVertex& v);

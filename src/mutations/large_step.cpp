@@ -1,0 +1,104 @@
+// MLT's large step: the path tracer's density of a given path (large_step.h, docs/mlt.md).
+// The terms follow the path tracer's sampling decisions vertex by vertex (stages.h:
+// stageShadePath, connectToLight): BSDF sampling with its lobe choice, Russian roulette from
+// depth rrDepth on (survival min(0.95, max component of the throughput)), and the light
+// sampler's density for the next-event connection.
+#include "erpt/large_step.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "path_factors.h"
+
+namespace erpt {
+
+void LargeStepModel::setLengths(const double* energyByLength) {
+  double total = 0;
+  for (int n = minVertices; n <= maxVertices; ++n) total += energyByLength[n];
+  const int lengths = maxVertices - minVertices + 1;
+  for (int n = 0; n <= kMaxChainVertices; ++n) {
+    if (n < minVertices || n > maxVertices) {
+      lengthProbability[n] = 0;
+      continue;
+    }
+    const double byEnergy = total > 0 ? energyByLength[n] / total : 1.0 / lengths;
+    lengthProbability[n] = float(0.5 * byEnergy + 0.5 / lengths);
+  }
+}
+
+namespace {
+
+// The light sampler's density of picking `light` from `from` (its own measure).
+float neeDensity(const MeasureContext& c, const PathVertex& from, const PathVertex& light) {
+  if (light.emitter < 0) return 0.0f;
+  switch (c.scene.emitters[size_t(light.emitter)].kind) {
+    case EmitterKind::Point: return c.lights.pickProbabilityOfEmitter(light.emitter);
+    case EmitterKind::Constant: return c.lights.pdfEnvironment(directionBetween(from, light));
+    case EmitterKind::Area: return c.lights.pdfAreaOfEmitter(light.emitter, from.p, light.p, light.ng);
+    case EmitterKind::Directional: return 0.0f;  // not in the chains' paths (seed_checks.h)
+  }
+  return 0.0f;
+}
+
+// The path tracer's Russian roulette at depth `depth` with throughput `next` after the bounce:
+// the survival probability (1 before rrDepth).
+float survival(int depth, int rrDepth, const Color& next) {
+  return depth >= rrDepth ? std::min(0.95f, maxComponent(next)) : 1.0f;
+}
+
+}  // namespace
+
+bool largeStepTerms(const MeasureContext& c, int rrDepth, const PathVertex* path, int n, LargeStepTerms& out) {
+  out = LargeStepTerms{};
+  if (n < 2) return false;
+  const PathVertex& light = path[n - 1];
+  if (light.kind != kLightVertex && light.kind != kEnvironmentVertex) return false;
+  const Color emitted = factors::emittedAlong(c, light, directionBetween(light, path[n - 2]));
+  if (n == 2) {
+    // An emitter the camera ray hits: the camera's own sample, throughput 1.
+    out.value = emitted;
+    out.pHit = 1;
+    return !isBlack(emitted);
+  }
+  Color throughput(1.0f);
+  for (int j = 1; j <= n - 2; ++j) {
+    const PathVertex& v = path[j];
+    const Vec3 wi = directionBetween(v, path[j - 1]), wo = directionBetween(v, path[j + 1]);
+    Color f;
+    float pdf = 0;
+    const bool specular = v.kind == kSpecularVertex;
+    if (specular) {
+      if (!factors::specularLobeAt(c, v, wi, wo, f, pdf)) return false;
+    } else {
+      f = factors::evalAt(c, v, wi, wo);
+      pdf = factors::pdfAt(c, v, wi, wo);
+    }
+    if (isBlack(f)) return false;
+    if (j < n - 2) {
+      // Depth j: the BSDF sampled the direction to vertex j + 1, then the roulette let it go on.
+      if (!(pdf > 0)) return false;
+      const Color next = throughput * f / pdf;
+      throughput = next / survival(j, rrDepth, next);
+      continue;
+    }
+    // The last surface vertex: f, the light's emission and the last segment's area factor.
+    const float area = factors::areaFactor(c, v, light);
+    out.value = throughput * f * emitted * area;
+    const bool deltaLight = factors::isPointLight(c, light);
+    if (pdf > 0 && !deltaLight) out.pHit = pdf * area * survival(j, rrDepth, throughput * f / pdf);
+    if (!specular) out.pNee = neeDensity(c, v, light);
+  }
+  return !isBlack(out.value) && (out.pHit > 0 || out.pNee > 0);
+}
+
+float largeStepWeight(const MeasureContext& c, const LargeStepModel& m, const PathVertex* path, int n) {
+  if (n < m.minVertices || n > m.maxVertices) return 0.0f;
+  LargeStepTerms t;
+  if (!largeStepTerms(c, m.rrDepth, path, n, t)) return 0.0f;
+  const float pNee = LargeStepModel::neeProbability(n);
+  const float q = m.lengthProbability[n] * ((1 - pNee) * t.pHit + pNee * t.pNee);
+  const float w = luminance(t.value) / q;
+  return q > 0 && std::isfinite(w) && w > 0 ? w : 0.0f;
+}
+
+}  // namespace erpt
