@@ -16,12 +16,23 @@
 namespace erpt {
 
 
+// Proposals made outside the mutation units: MLT's large steps. After the mutate stage, the
+// slots in state kProposalLarge wait for it; it must leave each complete (the whole proposed
+// path in the slot's proposal vertex rows, its vertex count, signature, film position, colour
+// and W(z)) or rejected. Returns the rays it traced.
+class ProposalSource {
+ public:
+  virtual ~ProposalSource() = default;
+  virtual uint64_t propose(const ErptStepContext& ctx, ErptQueues& q, StageTimes* times) const = 0;
+};
+
 struct ChainStep {
   const Tracer& tracer;
   const ErptStepContext& ctx;
   StageTimes* times = nullptr;  // per-stage seconds, when set
   size_t grain = 256;           // slots per range
   const MutationChooser* chooser = nullptr;  // the mutate stage's choice; null: ERPT's (erptChooser)
+  const ProposalSource* largeSteps = nullptr;  // MLT: makes the large steps the chooser picked
 
   // mutate -> (intersect -> trace)* -> connect; returns the rays traced.
   uint64_t propose(ErptQueues& q) const;

@@ -19,6 +19,7 @@
 
 #include "erpt/byte_stream.h"
 
+#include "erpt/chain_step.h"
 #include "erpt/erpt_stages.h"
 #include "erpt/render.h"
 #include "erpt/tracer.h"
@@ -43,6 +44,9 @@ class ErptChains {
     // falls back to its last saved state: the chains left are dropped, never half-deposited).
     const std::atomic<bool>* stop = nullptr;
     int lanes = 1;  // chain queues stepped at once (a render: its thread count)
+    // MLT: the mutate stage's choice (null: ERPT's) and the source of its large steps.
+    const MutationChooser* chooser = nullptr;
+    const ProposalSource* largeSteps = nullptr;
   };
   // Seeds deposited in place go to `film` (in seed order); the chains deposit into the
   // machine's own ExactFilm: image() is the sum of both.
@@ -55,6 +59,10 @@ class ErptChains {
   // is in the queue (or done). Seeds no chain can move (InPlaceReason), and every seed when
   // e_d = 0, are deposited at their own film position. False: stopped (Config::stop).
   bool consume(const SeedStore& batch);
+  // MLT: starts one chain at every seed of `starts` (its start states, resampled by the caller),
+  // each of settings' chainLength steps depositing `energyPerStep`, numbered in seed order, and
+  // runs steps whenever a queue is full. No seed is deposited in place. False: stopped.
+  bool startChains(const SeedStore& starts, float energyPerStep);
   // Runs the remaining chains to the end. False: stopped (Config::stop).
   bool finish();
   // The machine's state between batches with no chain in flight (after finish()): random

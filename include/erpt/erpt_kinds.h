@@ -14,12 +14,14 @@ enum class MutationKind : uint8_t {
   LensDisk,      // lens perturbation, film position uniform in a disk (PMC-ER)
   Caustic,       // caustic perturbation, angle density 1/theta on [1e-4, 0.1] rad (ERPT)
   CausticVeach,  // caustic perturbation, angle uniform in [0, theta_max(path)] (PMC-ER eq. 6)
+  LargeStep,     // MLT's independent proposal: a fresh path-tracer sample (large_step.h); no unit
   Count
 };
 constexpr int kMutationKindCount = int(MutationKind::Count);
 const char* mutationName(MutationKind k);
 
-enum ProposalState : uint8_t { kProposalWalking = 0, kProposalConnecting, kProposalComplete, kProposalRejected };
+// kProposalLarge: a large step waiting for its path-tracer sample (chain_step.h's ProposalSource).
+enum ProposalState : uint8_t { kProposalWalking = 0, kProposalConnecting, kProposalComplete, kProposalRejected, kProposalLarge };
 enum RejectReason : uint8_t {
   kRejectNone = 0,
   kRejectNoMutation,   // no mutation of the strategy applies to this path
@@ -31,6 +33,8 @@ enum RejectReason : uint8_t {
   kRejectIrreversible, // the reverse move is impossible (T(z -> y) = 0)
   kRejectCurrentZero,  // the chain's own path has no contribution in this mutation's measure
   kRejectByChance,     // valid proposal, not accepted by the coin flip
+  kRejectNoCandidate,  // large step: the sample made no path of the chosen length and technique
+  kRejectOutsideDomain,  // large step: a path the chains do not hold (too long, directional light, f = 0)
   kRejectReasonCount
 };
 const char* rejectReasonName(RejectReason r);

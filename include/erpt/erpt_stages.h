@@ -19,9 +19,13 @@ namespace erpt {
 
 // What every stage of a chain step reads: the scene's measure context and ERPT's settings
 // (ErptSettings is the one place for the options and their defaults).
+struct LargeStepModel;
+
 struct ErptStepContext {
   MeasureContext measure;
   ErptSettings settings;
+  // MLT: the large step's model, which the accept stage needs for W(y) (null: no large steps).
+  const LargeStepModel* largeSteps = nullptr;
   // The mutation units the settings' lens shape and caustic angle choose for the two families.
   MutationKind lensKind() const { return settings.lensShape == LensShape::Disk ? MutationKind::LensDisk : MutationKind::Lens; }
   MutationKind causticKind() const {
@@ -35,8 +39,12 @@ constexpr uint32_t kNoPixel = 0xffffffffu;
 // Random dimensions of one chain step (stream key = the chain's key, dimension =
 // step * kStepDims + use). Direction perturbations at vertex j use kDimPerturb + 2j, +1.
 // kDimComponent: the mixture component (PMC-ER's radius), after the last perturbation's.
-enum StepDim : uint32_t { kDimStrategy = 0, kDimAccept, kDimStart1, kDimStart2, kDimPerturb, kDimComponent = 30, kStepDims = 32 };
-static_assert(kDimPerturb + 2 * kMaxChainVertices <= kDimComponent, "step dimensions overlap");
+// kDimLargeStep: MLT's coin for a large step; a large step then draws its pixel, path length
+// and technique from kDimStart1, kDimStart2 and kDimPerturb (no perturbation uses them then).
+enum StepDim : uint32_t {
+  kDimStrategy = 0, kDimAccept, kDimStart1, kDimStart2, kDimPerturb, kDimLargeStep = 28, kDimComponent = 30, kStepDims = 32
+};
+static_assert(kDimPerturb + 2 * kMaxChainVertices <= kDimLargeStep, "step dimensions overlap");
 inline uint32_t stepDim(uint32_t step, uint32_t use) { return step * kStepDims + use; }
 
 // Statistics the accept stage counts (summed over threads).
@@ -74,6 +82,10 @@ struct ErptQueues {
 // Loads the current path of chain `slot` into `out` (kMaxChainVertices entries); returns its
 // vertex count.
 int loadChainPath(const ChainQueue& chains, const VertexQueue& vertices, size_t slot, PathVertex* out);
+
+// Whether a path's f is zero or not finite in the measure of a mutation the strategy may pick
+// for it (a chain standing there would accept anything).
+bool pathHasZeroContribution(const ErptStepContext& ctx, const PathVertex* path, int n, float filmX, float filmY);
 
 // Starts a chain in `slot` at seed `seed` of `store`: its vertices, film position, colour
 // rgb(X_f) / lum(X_f), random stream `key`, `chainLength` steps to go, each depositing

@@ -124,7 +124,8 @@
   C(color, "rgb(f) / lum(f) of the current path")                                                   \
   F(float, energy, {}, "luminance each step deposits (e_d; detailed balance: e / m)")               \
   F(uint32_t, runPixel, {}, "consecutive-sample filter: pixel of the chain's last deposits")        \
-  F(uint32_t, runLength, {}, "how many steps in a row the chain has been on runPixel")
+  F(uint32_t, runLength, {}, "how many steps in a row the chain has been on runPixel")              \
+  F(float, largeWeight, {}, "MLT: W = lum(f) / q of the current path for the large step (large_step.h); < 0: not known")
 
 // The proposal of one chain for the current step (same slot as the chain). Regenerated
 // vertices are written to the proposal's VertexQueue rows of that slot; the others are the
@@ -144,7 +145,10 @@
   F(float, acceptance, {}, "q(y -> z); 0 when rejected")                                            \
   F(uint8_t, component, {}, "mixture component (PMC-ER: index of the radius) the proposal was made with; 0 for ERPT") \
   F(float, selection, {}, "a(z) / a(y): probability of choosing this proposal's mutation and size at z over at y (1 unless the choice depends on the film position)") \
-  C(color, "rgb(f) / lum(f) of the proposed path")
+  C(color, "rgb(f) / lum(f) of the proposed path")                                                  \
+  F(uint8_t, vertexCount, {}, "large step: vertices of the proposed path (perturbations keep the chain's)") \
+  F(uint64_t, signature, {}, "large step: vertex kinds of the proposed path")                       \
+  F(float, largeWeight, {}, "large step: W(z) = lum(f) / q of the proposed path")
 
 // What one chain step deposits: kDepositsPerStep rows per chain slot (the paper's rule fills
 // one, expected values two). Applied to the film in slot order, so the image does not depend

@@ -12,6 +12,7 @@
 #include "erpt/erpt_settings.h"
 #include "erpt/film_splat.h"
 #include "erpt/image_io.h"
+#include "erpt/mlt_settings.h"
 #include "erpt/parallel.h"
 #include "erpt/pmc_settings.h"
 #include "erpt/scene.h"
@@ -58,6 +59,7 @@ struct RenderSettings {
   std::function<void(SeedStore&)> seedSink;
   ErptSettings erpt;  // ERPT, and the options PMC-ER shares with it (direct split, deposits, filters, pilot)
   PmcSettings pmc;
+  MltSettings mlt;
   // The Embree scene. render() builds it once and every pass and sub-render (ERPT's pilot,
   // seed and direct passes, time-budgeted passes) shares it; unset: the integrator builds one.
   std::shared_ptr<const Tracer> tracer;
@@ -94,6 +96,7 @@ struct RenderStats {
   StageTimes stages;
   ErptStats erpt;  // ERPT; for PMC-ER the chain step's counts
   PmcStats pmc;
+  MltStats mlt;
   int spp = 0;  // samples per pixel rendered (time-budgeted renders choose it)
   int passes = 0;
   // Stopped early (RenderSettings::stop): `spp` samples per pixel of the requested ones were

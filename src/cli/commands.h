@@ -23,6 +23,7 @@ struct RenderArgs {
   bool quiet = false, tessellateSpheres = false;
   ErptSettings erpt;
   PmcSettings pmc;
+  MltSettings mlt;
   std::string pmcFlow = "equal-deposition", pmcAdapt = "region", radii = "5,10,50";
   std::string strategy = "paper", deposit = "paper", flow = "equal-deposition", lensShape = "square", causticAngle = "erpt";
   bool pmFilter = false;
@@ -78,6 +79,11 @@ int runInfo(const InfoArgs& args);
 void printErptSummary(const RenderStats& stats);
 // The PMC-ER part (stderr).
 void printPmcSummary(const RenderStats& stats);
+void printMltSummary(const RenderStats& stats);
+// The chain step's proposals and acceptance per mutation kind, and its rejections by reason,
+// as one line each after `prefix:` (ERPT and MLT summaries).
+void printChainMoves(const char* prefix, const ErptStats& stats);
+void printRejections(const char* prefix, const ErptStats& stats);
 
 // "-D name=value" strings to a map; throws UsageError on a malformed one.
 std::map<std::string, std::string> parseDefines(const std::vector<std::string>& defines);

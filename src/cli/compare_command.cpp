@@ -60,7 +60,8 @@ IntegratorEntry parseEntry(const std::string& entry, const RenderArgs& common, c
   RenderArgs args = common;
   const size_t open = entry.find('[');
   args.integrator = entry.substr(0, open);
-  if (args.integrator != "path" && args.integrator != "erpt" && args.integrator != "pmc-er" && args.integrator != "direct")
+  if (args.integrator != "path" && args.integrator != "erpt" && args.integrator != "pmc-er" && args.integrator != "mlt" &&
+      args.integrator != "direct")
     throw UsageError("unknown integrator '" + args.integrator + "' in --integrators (available: " + integratorNames() + ")");
   if (open != std::string::npos) {
     if (entry.back() != ']') throw UsageError("--integrators entry '" + entry + "' must end with ']'");

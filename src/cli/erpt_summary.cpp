@@ -6,6 +6,24 @@
 
 namespace erpt::cli {
 
+void printChainMoves(const char* prefix, const ErptStats& e) {
+  auto pct = [](uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; };
+  std::fprintf(stderr, "%s:", prefix);
+  for (int k = 1; k < kMutationKindCount; ++k)
+    if (e.proposed[k] > 0)
+      std::fprintf(stderr, " %s %llu proposed, %.1f%% accepted;", mutationName(MutationKind(k)),
+                   (unsigned long long)e.proposed[k], pct(e.accepted[k], e.proposed[k]));
+  std::fprintf(stderr, " no mutation %llu\n", (unsigned long long)e.proposed[size_t(MutationKind::None)]);
+}
+
+void printRejections(const char* prefix, const ErptStats& e) {
+  std::fprintf(stderr, "%s: rejected:", prefix);
+  for (int r = kRejectNoMutation; r < kRejectReasonCount; ++r)
+    std::fprintf(stderr, "%s %s %llu", r == kRejectNoMutation ? "" : ",", rejectReasonName(RejectReason(r)),
+                 (unsigned long long)e.rejected[r]);
+  std::fprintf(stderr, "\n");
+}
+
 void printErptSummary(const RenderStats& stats) {
   const ErptStats& e = stats.erpt;
   auto pct = [](uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; };
@@ -22,21 +40,12 @@ void printErptSummary(const RenderStats& stats) {
     std::fprintf(stderr, "%s %s %llu", r == 0 ? "" : ",", inPlaceReasonName(InPlaceReason(r)),
                  (unsigned long long)e.inPlace[r]);
   std::fprintf(stderr, "; seeds with capped chain counts %llu\n", (unsigned long long)e.cappedSeeds);
-  std::fprintf(stderr, "erpt:");
-  for (int k = 1; k < kMutationKindCount; ++k)
-    if (e.proposed[k] > 0)
-      std::fprintf(stderr, " %s %llu proposed, %.1f%% accepted;", mutationName(MutationKind(k)),
-                   (unsigned long long)e.proposed[k], pct(e.accepted[k], e.proposed[k]));
-  std::fprintf(stderr, " no mutation %llu\n", (unsigned long long)e.proposed[size_t(MutationKind::None)]);
+  printChainMoves("erpt", e);
   if (e.discardedDeposits > 0)
     std::fprintf(stderr, "erpt: consecutive-sample filter threw away %llu deposits (%.3g%% of the deposited energy)\n",
                  (unsigned long long)e.discardedDeposits,
                  pct(uint64_t(e.discardedEnergy * 1e6), uint64_t((e.discardedEnergy + double(e.deposits) * e.depositEnergy) * 1e6)));
-  std::fprintf(stderr, "erpt: rejected:");
-  for (int r = kRejectNoMutation; r < kRejectReasonCount; ++r)
-    std::fprintf(stderr, "%s %s %llu", r == kRejectNoMutation ? "" : ",", rejectReasonName(RejectReason(r)),
-                 (unsigned long long)e.rejected[r]);
-  std::fprintf(stderr, "\n");
+  printRejections("erpt", e);
   std::fprintf(stderr, "erpt: %.2f Mrays/s in the chain loop; stage seconds:", e.erptSeconds > 0 ? double(e.rays) / e.erptSeconds * 1e-6 : 0.0);
   for (const auto& [name, seconds] : stats.stages.all())
     if (name.rfind("erpt ", 0) == 0) std::fprintf(stderr, " %s %.2f", name.c_str() + 5, seconds);

@@ -26,6 +26,7 @@ std::map<std::string, std::string> parseDefines(const std::vector<std::string>& 
 }
 
 static void addPmcOptions(CLI::App* cmd, RenderArgs& a);
+static void addMltOptions(CLI::App* cmd, RenderArgs& a);
 
 void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
   cmd->add_option("--spp", a.spp, "Samples per pixel (default: the scene's sample_count)")->check(CLI::Range(1, 1 << 24));
@@ -71,6 +72,17 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
   cmd->add_option("--direct-samples", e.directSamples, "ERPT: one-bounce paths by a direct-lighting pass with N samples per pixel (default 64); -1: ERPT renders them too, as in the paper")
       ->check(CLI::Range(-1, 1 << 16));
   addPmcOptions(cmd, a);
+  addMltOptions(cmd, a);
+}
+
+static void addMltOptions(CLI::App* cmd, RenderArgs& a) {
+  MltSettings& m = a.mlt;
+  cmd->add_option("--large-step-prob", m.largeStepProbability, "MLT: probability that a chain step is a large step, a fresh path-tracer sample through a uniform pixel (default 0.3)")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--bootstrap", m.bootstrapSpp, "MLT: path-tracer samples per pixel of the bootstrap that estimates the image's luminance b and seeds the chains (default 0: enough for 100,000 samples, at least 1 per pixel)")
+      ->check(CLI::Range(0, 65536));
+  cmd->add_option("--chains", m.chains, "MLT: Markov chains, started by resampling the bootstrap's paths by luminance (default 2048); each runs mutations-per-pixel x pixels / chains steps")
+      ->check(CLI::Range(1, 100000000));
 }
 
 static void addPmcOptions(CLI::App* cmd, RenderArgs& a) {
@@ -98,7 +110,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
   CLI::App* cmd = app.add_subcommand("render", "Render a Mitsuba XML scene to a linear EXR and a tone-mapped PNG");
   cmd->add_option("scene", a.scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required();
   cmd->add_option("-o,--output", a.output, "Output EXR path; the PNG is written beside it")->required();
-  cmd->add_option("--integrator", a.integrator, "Integrator: path (wavefront path tracer), erpt (energy redistribution path tracing), pmc-er (population Monte Carlo energy redistribution) or direct (direct lighting, for debugging); default: the scene's, if it is one of these, else path");
+  cmd->add_option("--integrator", a.integrator, "Integrator: path (wavefront path tracer), erpt (energy redistribution path tracing), pmc-er (population Monte Carlo energy redistribution), mlt (Metropolis light transport on ERPT's mutations) or direct (direct lighting, for debugging); default: the scene's, if it is one of these, else path");
   cmd->add_option("--time", a.time, "Render for this many seconds instead of --spp samples per pixel (passes of growing spp; the image then depends on the machine's speed)")
       ->check(CLI::Range(1e-3, 1e7));
   cmd->add_option("--checkpoint", a.checkpoint, "Write the render's state to FILE (atomically) every --checkpoint-every seconds and when it ends or is stopped; continue it with `erpt resume FILE` (path, direct, erpt)");
@@ -181,7 +193,7 @@ RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
   RenderSettings s;
   const bool sceneIntegratorKnown =
       scene.integrator.type == "path" || scene.integrator.type == "direct" || scene.integrator.type == "erpt" ||
-      scene.integrator.type == "pmc-er";
+      scene.integrator.type == "pmc-er" || scene.integrator.type == "mlt";
   s.integrator = !a.integrator.empty() ? a.integrator : sceneIntegratorKnown ? scene.integrator.type : "path";
   s.width = a.width;
   s.height = a.height;
@@ -200,6 +212,7 @@ RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
   s.erpt.flow = a.flow == "detailed-balance" ? FlowRule::DetailedBalance : FlowRule::EqualDeposition;
   if (a.pmFilter && s.erpt.pmFilterRadius < 0) s.erpt.pmFilterRadius = 3;
   s.pmc = a.pmc;
+  s.mlt = a.mlt;
   s.pmc.flow = a.pmcFlow == "balance" ? PmcFlow::Balance : PmcFlow::EqualDeposition;
   s.pmc.adapt = a.pmcAdapt == "member" ? PmcAdapt::Member : a.pmcAdapt == "off" ? PmcAdapt::Off : PmcAdapt::Region;
   s.pmc.radii = parseRadii(a.radii);
@@ -289,6 +302,7 @@ int runRender(const RenderArgs& given) {
                (unsigned long long)stats.invalidSamples, out.string().c_str(), png.string().c_str());
   if (s.integrator == "erpt") printErptSummary(stats);
   if (s.integrator == "pmc-er") printPmcSummary(stats);
+  if (s.integrator == "mlt") printMltSummary(stats);
   if (a.resumeFrom) std::fprintf(stderr, "%s: resumed after %d of %d samples per pixel%s\n", s.integrator.c_str(),
                                  a.resumeFrom->state.passesDone, ownSpp, ranks > 1 ? " (of rank 0)" : "");
   if (ranks > 1) std::fprintf(stderr, "%s: rendered by %d processes (samples per pixel, samples and rays are their total)\n",

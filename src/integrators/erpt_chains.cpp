@@ -125,6 +125,21 @@ bool ErptChains::consume(const SeedStore& batch) {
   return done;
 }
 
+bool ErptChains::startChains(const SeedStore& starts, float energyPerStep) {
+  batch_ = &starts;
+  pending_.clear();
+  for (size_t i = 0; i < starts.size(); ++i) pending_.push_back(PendingSeed{uint32_t(i), 1, energyPerStep, i});
+  stats_.seeds += starts.size();
+  stats_.chains += starts.size();
+  chainBase_ = chainCounter_;
+  chainCounter_ += starts.size();
+  batchChains_ = starts.size();
+  nextChain_ = 0;
+  const bool done = runLanes(false);
+  batch_ = nullptr;
+  return done;
+}
+
 bool ErptChains::finish() { return runLanes(true); }
 
 bool ErptChains::runLanes(bool drain) {
@@ -230,7 +245,7 @@ void ErptChains::depositInPlace(const SeedStore& store, size_t seed, double ener
 
 void ErptChains::step(Lane& lane) {
   // The lane is one thread's work: each stage runs over the whole queue as one range.
-  const ChainStep chainStep{tracer_, config_.step, &lane.times, lane.q.chains.size()};
+  const ChainStep chainStep{tracer_, config_.step, &lane.times, lane.q.chains.size(), config_.chooser, config_.largeSteps};
   lane.rays += chainStep.run(lane.q, counters_);
   auto start = std::chrono::steady_clock::now();
   ConcurrentDeposits target{exact_, lane.large};

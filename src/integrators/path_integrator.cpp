@@ -132,11 +132,9 @@ void writeEyeVertices(VertexQueue& history, PathQueue& paths, const RayQueue& ca
 // Traces samples [first, first + count) through wavefront `w` with `capacity` paths in flight.
 // Each sample's radiance goes to out[sample - outFirst]. Recording seeds, count <= capacity:
 // all samples start at once and the wavefront drains.
-void traceSamples(const RenderSetup& setup, const PathSampleSet& samples, size_t first, size_t count, size_t capacity,
-                  PathWavefront& w, const StageRunner& run, BatchRadiance& out, size_t outFirst, SeedRecording* rec,
-                  std::atomic<uint64_t>& rayCount) {
-  const Tracer& tracer = setup.tracer;
-  const StageContext& ctx = setup.ctx;
+void traceSamples(const Tracer& tracer, const StageContext& ctx, const PathSampleSet& samples, size_t first,
+                  size_t count, size_t capacity, PathWavefront& w, const StageRunner& run, BatchRadiance& out,
+                  size_t outFirst, SeedRecording* rec, std::atomic<uint64_t>& rayCount) {
   w.reserve(capacity);
   w.freeIds.resize(capacity);
   std::iota(w.freeIds.begin(), w.freeIds.end(), 0u);
@@ -211,6 +209,24 @@ void traceSamples(const RenderSetup& setup, const PathSampleSet& samples, size_t
 }
 }  // namespace
 
+struct PathTracerScratch::Impl {
+  PathWavefront wavefront;
+  BatchRadiance radiance;
+};
+PathTracerScratch::PathTracerScratch() : impl(std::make_unique<Impl>()) {}
+PathTracerScratch::~PathTracerScratch() = default;
+
+uint64_t traceSeedsInline(const Tracer& tracer, const StageContext& ctx, const PathSampleSet& samples, SeedStore& seeds,
+                          PathTracerScratch& scratch, StageTimes& times) {
+  std::atomic<uint64_t> rays{0};
+  if (samples.count == 0) return 0;
+  SeedRecording rec{seeds, {}};
+  scratch.impl->radiance.resize(samples.count);
+  traceSamples(tracer, ctx, samples, 0, samples.count, samples.count, scratch.impl->wavefront, StageRunner{false, times},
+               scratch.impl->radiance, 0, &rec, rays);
+  return rays;
+}
+
 bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, const PathTraceOutput& out,
                       RenderStats& stats) {
   const size_t total = samples.count;
@@ -232,14 +248,14 @@ bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
     batch.resize(n);
     if (out.seeds) {
       SeedRecording rec{*out.seeds, {}};
-      traceSamples(setup, samples, first, n, n, shared, StageRunner{true, stats.stages}, batch, first, &rec, rayCount);
+      traceSamples(setup.tracer, setup.ctx, samples, first, n, n, shared, StageRunner{true, stats.stages}, batch, first, &rec, rayCount);
     } else {
       // One task per chunk of samples, each on its thread's own wavefront.
       forEachRange("path chunks", (n + kChunkSamples - 1) / kChunkSamples, 1, [&](IndexRange chunks) {
         for (size_t c = chunks.begin; c < chunks.end; ++c) {
           StageTimes times;
           const size_t begin = first + c * kChunkSamples, count = std::min(kChunkSamples, first + n - begin);
-          traceSamples(setup, samples, begin, count, kTaskQueue, local.local(), StageRunner{false, times}, batch,
+          traceSamples(setup.tracer, setup.ctx, samples, begin, count, kTaskQueue, local.local(), StageRunner{false, times}, batch,
                        first, nullptr, rayCount);
           // Stage times of the tasks, in seconds of the whole pool (thread time / threads).
           std::lock_guard<std::mutex> lock(timesMutex);

@@ -2,12 +2,16 @@
 
 #include <atomic>
 #include <functional>
+#include <memory>
 
 #include "erpt/render.h"
 
 namespace erpt {
 
 struct RenderSetup;
+struct StageContext;
+struct SeedStore;
+class StageTimes;
 class Film;
 class SplatFilm;
 
@@ -36,5 +40,19 @@ struct PathTraceOutput {
 // out.stop turned true before every batch was done (what the batches done added stays).
 bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, const PathTraceOutput& out,
                       RenderStats& stats);
+
+// The path tracer's working memory for traceSeedsInline (one per thread; reused).
+struct PathTracerScratch {
+  PathTracerScratch();
+  ~PathTracerScratch();
+  struct Impl;
+  std::unique_ptr<Impl> impl;
+};
+// Runs the path tracer over `samples` on the calling thread only, with stage context `ctx`
+// (its seed keys the samples' random streams), and appends every contribution to `seeds` in
+// the usual order (bounce, sample). For callers that already run one task per thread: MLT's
+// large steps inside a chain lane. Returns the rays traced.
+uint64_t traceSeedsInline(const Tracer& tracer, const StageContext& ctx, const PathSampleSet& samples, SeedStore& seeds,
+                          PathTracerScratch& scratch, StageTimes& times);
 
 }  // namespace erpt

@@ -9,6 +9,7 @@
 #include "erpt/rng.h"
 #include "erpt/tracer.h"
 #include "erpt_integrator.h"
+#include "mlt_integrator.h"
 #include "pmc_er_integrator.h"
 #include "path_integrator.h"
 #include "sample_passes.h"
@@ -26,6 +27,7 @@ RgbImage renderOnce(const Scene& scene, const RenderSettings& s, RenderStats& st
   if (s.integrator == "path") return renderPath(scene, s, stats);
   if (s.integrator == "erpt") return renderErpt(scene, s, stats);
   if (s.integrator == "pmc-er") return renderPmcEr(scene, s, stats);
+  if (s.integrator == "mlt") return renderMlt(scene, s, stats);
   if (s.integrator == "direct") return renderDirect(scene, s, stats);
   throw UsageError("unknown integrator '" + s.integrator + "' (available: " + integratorNames() + ")");
 }
@@ -45,6 +47,19 @@ void addErptStats(ErptStats& to, const ErptStats& from) {
   to.erptSeconds += from.erptSeconds;
   to.discardedDeposits += from.discardedDeposits;
   to.discardedEnergy += from.discardedEnergy;
+}
+
+void addMltStats(MltStats& to, const MltStats& from) {
+  to.b = from.b;  // each pass estimates b on its own; the last one is shown
+  to.inPlaceEnergy = from.inPlaceEnergy;
+  to.bootstrapSamples += from.bootstrapSamples;
+  to.domainSeeds += from.domainSeeds;
+  to.inPlaceSeeds += from.inPlaceSeeds;
+  to.chains += from.chains;
+  to.chainLength = from.chainLength;
+  to.energyPerStep = from.energyPerStep;
+  to.chainSeconds += from.chainSeconds;
+  to.bootstrapSeconds += from.bootstrapSeconds;
 }
 
 void addPmcStats(PmcStats& to, const PmcStats& from) {
@@ -133,7 +148,10 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
   for (int p = 0;; ++p) {
     pass.spp = passSpp;
     pass.seed = p == 0 ? s.seed : streamKey(s.seed, kPassStream, uint64_t(p));
-    if (redistributes(s.integrator) && s.erpt.directSamples > 0)
+    // MLT: each pass runs the configured mutations per pixel scaled by its share of the spp.
+    if (s.integrator == "mlt")
+      pass.erpt.mutationsPerPixel = std::max(1, int(std::lround(double(s.erpt.mutationsPerPixel) * passSpp / s.spp)));
+    if ((redistributes(s.integrator) || s.integrator == "mlt") && s.erpt.directSamples > 0)
       pass.erpt.directSamples = std::max(1, int(std::lround(double(s.erpt.directSamples) * passSpp / s.spp)));
     const Clock::time_point passStart = Clock::now();
     RenderStats ps;
@@ -157,6 +175,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
     for (const auto& [name, seconds] : ps.stages.all()) stats.stages.add(name, seconds);
     addErptStats(stats.erpt, ps.erpt);
     addPmcStats(stats.pmc, ps.pmc);
+    addMltStats(stats.mlt, ps.mlt);
     stats.spp += passSpp;
     stats.passes = p + 1;
 
@@ -196,7 +215,7 @@ RenderSettings resolveSettings(const Scene& scene, RenderSettings s) {
   return s;
 }
 
-const char* integratorNames() { return "path, direct, erpt, pmc-er"; }
+const char* integratorNames() { return "path, direct, erpt, pmc-er, mlt"; }
 
 RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
   RenderSettings s = resolveSettings(scene, requested);
@@ -204,6 +223,11 @@ RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats
   // Before the BVH build: fail fast.
   if (s.integrator == "erpt") validateErptSettings(s.erpt);
   if (s.integrator == "pmc-er") validatePmcSettings(s.pmc, s.erpt);
+  if (s.integrator == "mlt") {
+    RenderSettings once = s;
+    once.onPasses = nullptr;  // a time-budgeted render's own hook is checked per pass
+    validateMltSettings(s.timeBudget != 0 ? once : s);
+  }
   if (!s.tracer) {
     ThreadPool pool(s.threads);  // the BVH build uses the threads the render may use
     s.tracer = std::make_shared<const Tracer>(scene);

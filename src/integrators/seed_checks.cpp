@@ -29,22 +29,8 @@ InPlaceReason seedSignatureReason(const ErptStepContext& ctx, const SeedStore& s
 bool seedHasZeroContribution(const ErptStepContext& ctx, const SeedStore& store, size_t i) {
   const uint32_t n = store.seeds.vertexCount[i];  // at most kMaxChainVertices (seedSignatureReason)
   PathVertex path[kMaxChainVertices];
-  uint8_t kinds[kMaxChainVertices];
-  for (uint32_t j = 0; j < n; ++j) {
-    loadPathVertex(store.vertices, store.seeds.vertexBegin[i] + j, path[j]);
-    kinds[j] = path[j].kind;
-  }
-  // Every mutation the strategy may pick for this signature (the choice depends on the
-  // signature only, which mutations preserve) must see a path of positive, finite f.
-  for (float u : {0.0f, 0.999f}) {
-    const MutationKind family = chooseMutation(ctx.settings.strategy, kinds, int(n), u);
-    if (family == MutationKind::None) continue;
-    const MutationKind kind = family == MutationKind::Lens ? ctx.lensKind() : ctx.causticKind();
-    const float f =
-        luminance(contributionFor(kind, ctx.measure, path, int(n), store.seeds.filmX[i], store.seeds.filmY[i]));
-    if (!(f > 0) || !std::isfinite(f)) return true;
-  }
-  return false;
+  for (uint32_t j = 0; j < n; ++j) loadPathVertex(store.vertices, store.seeds.vertexBegin[i] + j, path[j]);
+  return pathHasZeroContribution(ctx, path, int(n), store.seeds.filmX[i], store.seeds.filmY[i]);
 }
 
 double depositSeedInPlace(const FilmDensity& density, const SeedStore& store, size_t seed, double energy, Film& film) {

@@ -21,6 +21,8 @@ const char* rejectReasonName(RejectReason r) {
     case kRejectIrreversible: return "reverse move impossible";
     case kRejectCurrentZero: return "current path zero in this measure";
     case kRejectByChance: return "not accepted (q)";
+    case kRejectNoCandidate: return "large step made no such path";
+    case kRejectOutsideDomain: return "large step outside the chains' paths";
     default: return "?";
   }
 }
@@ -32,6 +34,7 @@ const char* mutationName(MutationKind k) {
     case MutationKind::LensDisk: return "lens (disk)";
     case MutationKind::Caustic: return "caustic";
     case MutationKind::CausticVeach: return "caustic (Veach angle)";
+    case MutationKind::LargeStep: return "large step";
     default: return "?";
   }
 }

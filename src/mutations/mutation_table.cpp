@@ -1,4 +1,5 @@
-// The one place the mutation units are looked up by kind, and the strategies' choice of a
+// The one place the mutation units are looked up by kind (MLT's large step has no unit: it
+// is not a perturbation of the current path, large_step.h), and the strategies' choice of a
 // mutation family for a path.
 #include <stdexcept>
 
@@ -11,7 +12,7 @@ extern const Mutation kLensSquareMutation, kLensDiskMutation, kCausticMutation, 
 namespace {
 // Constant-initialized (addresses only), so a lookup is one indexed load.
 const Mutation* const kUnits[kMutationKindCount] = {nullptr, &kLensSquareMutation, &kLensDiskMutation, &kCausticMutation,
-                                                    &kCausticVeachMutation};
+                                                    &kCausticVeachMutation, nullptr};
 }  // namespace
 
 const Mutation& mutationOf(MutationKind kind) {

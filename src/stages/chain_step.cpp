@@ -53,7 +53,8 @@ uint64_t ChainStep::propose(ErptQueues& q) const {
     stageErptMutate(ctx, q.chains, q.chainVertices, q.proposals, q.rays, r, chooser);
     for (size_t i = r.begin; i < r.end; ++i) disableRay(q.shadowRays, i);
   }, times);
-  return traceAndConnect(q);
+  const uint64_t largeRays = largeSteps ? largeSteps->propose(ctx, q, times) : 0;
+  return largeRays + traceAndConnect(q);
 }
 
 uint64_t ChainStep::traceAndConnect(ErptQueues& q) const {

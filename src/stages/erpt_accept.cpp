@@ -5,12 +5,43 @@
 #include <cmath>
 
 #include "erpt/erpt_stages.h"
+#include "erpt/large_step.h"
 #include "erpt/rng.h"
 
 namespace erpt {
 
 namespace {
 uint8_t measureOf(MutationKind kind) { return uint8_t(mutationOf(kind).measure); }
+
+// MLT's large step: q = min(1, W(z) / W(y)) (large_step.h; its proposal density does not
+// depend on y). W(y) is cached with the chain until a perturbation moves it.
+float largeStepAcceptance(const ErptStepContext& ctx, ChainQueue& chains, const VertexQueue& chainVertices,
+                          ProposalQueue& proposals, size_t i) {
+  if (chains.largeWeight[i] < 0) {
+    PathVertex y[kMaxChainVertices];
+    const int n = loadChainPath(chains, chainVertices, i, y);
+    chains.largeWeight[i] = largeStepWeight(ctx.measure, *ctx.largeSteps, y, n);
+  }
+  const float wy = chains.largeWeight[i], wz = proposals.largeWeight[i];
+  if (!(wy > 0) || !std::isfinite(wy)) {
+    // q(y) = 0: no large step leads to y, so none may leave it either.
+    proposals.reason[i] = kRejectIrreversible;
+    return 0.0f;
+  }
+  return std::min(1.0f, wz / wy);
+}
+
+// Moves the chain in slot i to its large step's path: every vertex, its count and signature.
+void takeLargeStep(ChainQueue& chains, VertexQueue& chainVertices, const ProposalQueue& proposals,
+                   const VertexQueue& proposalVertices, size_t i) {
+  const size_t base = i * kMaxChainVertices;
+  for (int j = 0; j < proposals.vertexCount[i]; ++j)
+    chainVertices.copyRow(base + size_t(j), proposalVertices, base + size_t(j));
+  chains.vertexCount[i] = proposals.vertexCount[i];
+  chains.signature[i] = proposals.signature[i];
+  chains.largeWeight[i] = proposals.largeWeight[i];
+  chains.fKind[i] = chains.tailKind[i] = uint8_t(MutationKind::None);  // f and the tail in no measure yet
+}
 }  // namespace
 
 void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue& chainVertices,
@@ -31,7 +62,11 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
     float q = 0;
     Color fz(0.0f);
     float fzLum = 0;
-    if (proposals.state[i] == kProposalComplete) {
+    const bool large = kind == MutationKind::LargeStep;
+    if (proposals.state[i] == kProposalComplete && large) {
+      q = largeStepAcceptance(ctx, chains, chainVertices, proposals, i);
+      fz = proposals.colorAt(i);
+    } else if (proposals.state[i] == kProposalComplete) {
       const Mutation& unit = mutationOf(kind);
       const uint8_t measure = measureOf(kind);
       // With the fixed tail cached, f only reads the vertices up to where the tail starts.
@@ -92,7 +127,13 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
 
     const StepDeposit before{chains.filmX[i], chains.filmY[i], chains.colorAt(i)};
     const StepDeposit proposal{proposals.filmX[i], proposals.filmY[i], fz};
-    if (accept && moves) {
+    if (accept && moves && large) {
+      takeLargeStep(chains, chainVertices, proposals, proposalVertices, i);
+      chains.filmX[i] = proposals.filmX[i];
+      chains.filmY[i] = proposals.filmY[i];
+      chains.colorSet(i, fz);
+    } else if (accept && moves) {
+      chains.largeWeight[i] = -1;  // W(y) of the new path: computed when a large step needs it
       for (int j = first; j <= last; ++j) chainVertices.copyRow(base + size_t(j), proposalVertices, base + size_t(j));
       chains.filmX[i] = proposals.filmX[i];
       chains.filmY[i] = proposals.filmY[i];

@@ -1,5 +1,6 @@
 // The chain queues of ERPT: allocation, a chain's path as values, a chain started at a seed.
 #include <algorithm>
+#include <cmath>
 
 #include "erpt/erpt_stages.h"
 #include "erpt/tracer.h"
@@ -19,6 +20,21 @@ ErptQueues::ErptQueues(size_t capacity) {
   denseSlots.reserve(capacity);
   deposits.resize(capacity * kDepositsPerStep);
   for (size_t i = 0; i < capacity; ++i) chains.stepsLeft[i] = 0;
+}
+
+bool pathHasZeroContribution(const ErptStepContext& ctx, const PathVertex* path, int n, float filmX, float filmY) {
+  uint8_t kinds[kMaxChainVertices];
+  for (int j = 0; j < n; ++j) kinds[j] = path[j].kind;
+  // Every mutation the strategy may pick for this signature (the choice depends on the
+  // signature only, which mutations preserve) must see a path of positive, finite f.
+  for (float u : {0.0f, 0.999f}) {
+    const MutationKind family = chooseMutation(ctx.settings.strategy, kinds, n, u);
+    if (family == MutationKind::None) continue;
+    const MutationKind kind = family == MutationKind::Lens ? ctx.lensKind() : ctx.causticKind();
+    const float f = luminance(contributionFor(kind, ctx.measure, path, n, filmX, filmY));
+    if (!(f > 0) || !std::isfinite(f)) return true;
+  }
+  return false;
 }
 
 int loadChainPath(const ChainQueue& chains, const VertexQueue& vertices, size_t slot, PathVertex* out) {
@@ -47,6 +63,7 @@ void loadChainFromSeed(ChainQueue& chains, VertexQueue& chainVertices, size_t sl
   chain.color = c / luminance(c);
   chain.energy = energyPerStep;
   chain.runPixel = kNoPixel;
+  chain.largeWeight = -1;  // computed by the first large step that needs it
   chains.setRow(slot, chain);
 }
 

@@ -46,7 +46,7 @@ TEST(ExactFilm, SumsDoNotDependOnTheOrderOfTheAdds) {
     sums[3 * a.pixel] += double(a.c.x) * a.w;
   }
   for (size_t i = adds.size(); i-- > 0;) backward.add(adds[i].pixel, adds[i].c, adds[i].w);
-  RgbImage f{2, 2, std::vector<Color>(4)}, b{2, 2, std::vector<Color>(4)};
+  RgbImage f{2, 2, std::vector<Color>(4), {}}, b{2, 2, std::vector<Color>(4), {}};
   forward.addTo(f, 1.0);
   backward.addTo(b, 1.0);
   test::expectBitIdentical(f, b);
@@ -86,7 +86,7 @@ TEST(ExactFilm, ReduceAcrossProcessesIsExact) {
   a.reduce([&](std::vector<double>& v) {
     for (size_t i = 0; i < v.size(); ++i) v[i] += fromOther[i];
   });
-  RgbImage img{1, 1, {Color(0)}};
+  RgbImage img{1, 1, {Color(0)}, {}};
   a.addTo(img, 1.0);
   EXPECT_EQ(img.pixels[0].x, float(double(3e15f) + double(5e15f)));
   EXPECT_EQ(img.pixels[0].y, -5.0f);

@@ -26,13 +26,7 @@ RenderSettings pmcSettings(int spp, PmcFlow flow, PmcAdapt adapt, int population
   return s;
 }
 
-RgbImage renderImage(const Scene& scene, const RenderSettings& s, RenderStats* out = nullptr) {
-  RenderStats stats;
-  RgbImage img = render(scene, s, stats);
-  EXPECT_EQ(stats.invalidSamples, 0u);
-  if (out) *out = stats;
-  return img;
-}
+using test::renderImage;
 
 Scene defaultScene() { return loadScene(test::sourceDir() + "/scenes/default/scene.xml"); }
 Scene plasticBox() { return loadScene(test::sourceDir() + "/tests/data/plastic-box.xml"); }

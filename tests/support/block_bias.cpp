@@ -132,4 +132,12 @@ BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSe
   return BlockBiasResult{z.meanSquare, z.worst};
 }
 
+RgbImage renderImage(const Scene& scene, const RenderSettings& settings, RenderStats* out) {
+  RenderStats stats;
+  RgbImage img = render(scene, settings, stats);
+  EXPECT_EQ(stats.invalidSamples, 0u);
+  if (out) *out = stats;
+  return img;
+}
+
 }  // namespace erpt::test

@@ -8,6 +8,9 @@
 
 namespace erpt::test {
 
+// render() with its stats copied to `out` (when given), expecting no invalid samples.
+RgbImage renderImage(const Scene& scene, const RenderSettings& settings, RenderStats* out = nullptr);
+
 struct BlockBiasResult {
   double meanSquare = 0, worst = 0;
 };

@@ -1,0 +1,28 @@
+// MLT statistics after a render: the bootstrap, the chains, acceptance per mutation kind.
+#include <cstdio>
+
+#include "commands.h"
+#include "erpt/erpt_path.h"
+
+namespace erpt::cli {
+
+void printMltSummary(const RenderStats& stats) {
+  const MltStats& m = stats.mlt;
+  const ErptStats& e = stats.erpt;
+  std::fprintf(stderr,
+               "mlt: b %.6g (bootstrap: %llu samples, %llu paths for the chains, %llu deposited in place holding "
+               "%.4g), %.2f s\n",
+               m.b, (unsigned long long)m.bootstrapSamples, (unsigned long long)m.domainSeeds,
+               (unsigned long long)m.inPlaceSeeds, m.inPlaceEnergy, m.bootstrapSeconds);
+  std::fprintf(stderr, "mlt: %llu chains x %llu steps, %llu mutations (%.2f M/s in %.2f s), %.4g per step\n",
+               (unsigned long long)m.chains, (unsigned long long)m.chainLength, (unsigned long long)e.mutations,
+               m.chainSeconds > 0 ? double(e.mutations) / m.chainSeconds * 1e-6 : 0.0, m.chainSeconds, m.energyPerStep);
+  printChainMoves("mlt", e);
+  printRejections("mlt", e);
+  std::fprintf(stderr, "mlt: stage seconds:");
+  for (const auto& [name, seconds] : stats.stages.all())
+    if (name.rfind("erpt ", 0) == 0) std::fprintf(stderr, " %s %.2f", name.c_str() + 5, seconds);
+  std::fprintf(stderr, "\n");
+}
+
+}  // namespace erpt::cli

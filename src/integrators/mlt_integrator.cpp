@@ -1,0 +1,285 @@
+// `--integrator mlt`: Metropolis light transport (Veach and Guibas 1997) over the mutation
+// engine ERPT uses, so that a comparison of the two measures the algorithms (docs/mlt.md).
+//
+//   1. Optional (--direct-samples N): paths of at most one bounce go to the direct-lighting
+//      pass, as in ERPT; the chains hold paths of two or more bounces.
+//   2. Bootstrap (--bootstrap N samples per pixel, by default enough for 100,000 samples as in
+//      pbrt-v4; its own random stream): the path tracer's
+//      contributions split into those the chains hold (their domain, mlt_stages.h) and the
+//      rest, which are deposited where they are (their own unbiased estimate). The domain's
+//      total luminance, divided by the samples per pixel, is b, the image's normalisation.
+//   3. Chains (--chains C): start states resampled from the bootstrap's domain contributions in
+//      proportion to their luminance (systematic resampling, its own stream; the bootstrap is
+//      traced a second time, bit-identically, to keep only the chosen paths). Each chain runs
+//      L = M pixels / C steps (M: --mutations-per-pixel), each step a large step with
+//      probability --large-step-prob, else ERPT's lens or caustic perturbation, and deposits
+//      b / (C L) as expected values at the current and the proposed path.
+//   image = chains + in-place contributions + direct pass. MLT is consistent, not unbiased: b is
+//   an estimate, and the chains start from an approximation of their stationary distribution.
+#include "mlt_integrator.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "erpt/erpt_chains.h"
+#include "erpt/mlt_stages.h"
+#include "erpt/rng.h"
+#include "erpt/seed_checks.h"
+#include "erpt_integrator.h"
+#include "path_integrator.h"
+#include "render_setup.h"
+#include "sample_passes.h"
+
+namespace erpt {
+
+namespace {
+constexpr uint64_t kBootstrapStream = 0x626f6f74ull, kResampleStream = 0x726573616d70ull,
+                   kLargeStepStream = 0x6c61726765ull;
+
+double secondsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// The large steps of a chain lane: the path tracer, run on the lane's thread over one sample
+// per large step, then stageMltLargeSteps.
+class LargeStepSource final : public ProposalSource {
+ public:
+  LargeStepSource(const Tracer& tracer, const StageContext& ctx, uint32_t pixels)
+      : tracer_(tracer), ctx_(ctx), pixels_(pixels) {}
+
+  uint64_t propose(const ErptStepContext& ctx, ErptQueues& q, StageTimes* times) const override {
+    const auto start = std::chrono::steady_clock::now();
+    Scratch& s = scratch_.local();
+    s.slots.clear();
+    for (size_t i = 0; i < q.chains.size(); ++i)
+      if (q.proposals.state[i] == kProposalLarge) s.slots.push_back(uint32_t(i));
+    if (s.slots.empty()) return 0;
+    s.pixel.resize(s.slots.size());
+    s.sample.resize(s.slots.size());
+    for (size_t k = 0; k < s.slots.size(); ++k) largeStepSample(q.chains, s.slots[k], pixels_, s.pixel[k], s.sample[k]);
+    const PathSampleSet samples{s.slots.size(), [&](size_t k, uint32_t& pixel, uint32_t& sample) {
+                                  pixel = s.pixel[k];
+                                  sample = s.sample[k];
+                                }};
+    s.store.clear();
+    StageTimes pathTimes;
+    const uint64_t rays = traceSeedsInline(tracer_, ctx_, samples, s.store, s.path, pathTimes);
+    stageMltLargeSteps(ctx, q.chains, s.store, s.slots.data(), s.slots.size(), q.proposals, q.proposalVertices);
+    if (times) times->add("erpt large step", secondsSince(start));
+    return rays;
+  }
+
+ private:
+  struct Scratch {
+    PathTracerScratch path;
+    SeedStore store;
+    std::vector<uint32_t> slots, pixel, sample;
+  };
+  const Tracer& tracer_;
+  StageContext ctx_;  // the render's, with the large steps' seed and one stratum per pixel
+  uint32_t pixels_;
+  mutable PerThread<Scratch> scratch_;
+};
+
+// The bootstrap's view of one recorded contribution: whether the chains hold it (its
+// luminance then counts towards b) or it is deposited where it is.
+struct Bootstrap {
+  const ErptStepContext& ctx;
+  bool excludeDirect;
+  std::vector<float> energies;               // luminance of the domain contributions, in order
+  double energyByLength[kMaxChainVertices + 1] = {};
+  double total = 0;                          // sum of energies
+  // Calls `domain(batch, i, ordinal)` for every contribution the chains hold, in order, and
+  // `outside(batch, i)` for every other one with energy.
+  template <class Domain, class Outside>
+  void classify(const SeedStore& batch, Domain&& domain, Outside&& outside, size_t& ordinal) const {
+    PathVertex path[kMaxChainVertices];
+    for (size_t i = 0; i < batch.size(); ++i) {
+      if (!seedForChains(batch, i, excludeDirect)) continue;
+      const float e = luminance(batch.contribution(i));
+      if (!(e > 0) || !std::isfinite(e)) continue;
+      const int n = int(batch.seeds.vertexCount[i]);
+      float w = 0;
+      if (n <= kMaxChainVertices) {
+        for (int j = 0; j < n; ++j) loadPathVertex(batch.vertices, batch.seeds.vertexBegin[i] + size_t(j), path[j]);
+        w = mltDomainWeight(ctx, path, n, batch.seeds.filmX[i], batch.seeds.filmY[i]);
+      }
+      if (w > 0)
+        domain(batch, i, ordinal++);
+      else
+        outside(batch, i);
+    }
+  }
+};
+
+// Systematic resampling: `count` ordinals of `energies`, each chosen with probability
+// proportional to its energy (in ordinal order; an ordinal may repeat).
+std::vector<size_t> resample(const std::vector<float>& energies, double total, size_t count, float u) {
+  std::vector<size_t> chosen;
+  chosen.reserve(count);
+  double running = 0;
+  size_t k = 0;
+  for (size_t i = 0; i < energies.size() && k < count; ++i) {
+    running += energies[i];
+    while (k < count && (double(k) + u) / double(count) * total < running) chosen.push_back(i), ++k;
+  }
+  while (k < count && !energies.empty()) chosen.push_back(energies.size() - 1), ++k;  // rounding at the end
+  return chosen;
+}
+
+void appendSeed(SeedStore& to, const SeedStore& from, size_t i, size_t copies) {
+  const uint32_t begin = uint32_t(to.vertices.size());
+  const uint32_t n = from.seeds.vertexCount[i];
+  to.vertices.resize(begin + n);
+  for (uint32_t j = 0; j < n; ++j) to.vertices.copyRow(begin + j, from.vertices, from.seeds.vertexBegin[i] + j);
+  for (size_t c = 0; c < copies; ++c) {
+    const size_t row = to.seeds.size();
+    to.seeds.resize(row + 1);
+    to.seeds.copyRow(row, from.seeds, i);
+    to.seeds.vertexBegin[row] = begin;
+  }
+}
+
+}  // namespace
+
+void validateMltSettings(const RenderSettings& s) {
+  validateErptSettings(s.erpt);
+  const MltSettings& m = s.mlt;
+  if (!(m.largeStepProbability >= 0) || !(m.largeStepProbability <= 1))
+    throw UsageError("--large-step-prob must be in [0, 1]");
+  if (m.bootstrapSpp < 0 || m.bootstrapSpp > 65536)
+    throw UsageError("--bootstrap must be in [1, 65536] samples per pixel (0: automatic)");
+  if (m.chains < 1 || m.chains > 100000000) throw UsageError("--chains must be in [1, 100000000]");
+  const double mutations = double(s.erpt.mutationsPerPixel) * double(s.width) * double(s.height);
+  if (mutations / double(m.chains) > double(1 << 30))
+    throw UsageError("--mutations-per-pixel x pixels / --chains gives more than 2^30 steps per chain; raise --chains");
+  if (s.erpt.pmFilterRadius >= 0 || s.erpt.maxConsecutive > 0)
+    throw UsageError("--pm-filter and --max-consecutive are ERPT's noise filters; mlt does not take them");
+  if (s.erpt.flow != FlowRule::EqualDeposition) throw UsageError("--flow is ERPT's; mlt does not take it");
+  if (s.share.split()) throw UsageError("mlt does not split a render over processes yet");
+  if (s.resume || s.onPasses) throw UsageError("mlt does not write checkpoints or partial images yet");
+}
+
+RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+  validateMltSettings(s);
+  MltStats& ms = stats.mlt;
+  ErptSettings options = s.erpt;
+  options.expectedDeposit = true;  // MLT's expected-value splatting of current and proposed paths
+  const RgbImage direct = renderDirectPass(scene, s, stats);
+
+  RenderSetup setup(scene, s);
+  FilmDensity density(setup.filter, s.width, s.height);
+  LargeStepModel model;
+  model.probability = s.mlt.largeStepProbability;
+  model.minVertices = options.directSamples > 0 ? 4 : 2;
+  model.maxVertices = s.maxDepth >= 0 ? std::min(kMaxChainVertices, s.maxDepth + 1) : kMaxChainVertices;
+  model.rrDepth = setup.ctx.rrDepth;
+  // Uniform lengths until the bootstrap knows better: the domain test only asks whether W > 0.
+  const double noEnergy[kMaxChainVertices + 1] = {};
+  model.setLengths(noEnergy);
+  const ErptStepContext ctx{MeasureContext{scene, setup.lights, setup.camera, density}, options, &model};
+  auto partial = [&] {
+    stats.partial = true;
+    stats.spp = 0;
+    return RgbImage{s.width, s.height, std::vector<Color>(size_t(s.width) * size_t(s.height), Color(0.0f)), {}};
+  };
+
+  // Bootstrap, first trace: b, the energy by length, and the contributions the chains do not hold.
+  auto bootStart = std::chrono::steady_clock::now();
+  Bootstrap boot{ctx, options.directSamples > 0, {}};
+  Film inPlace(s.width, s.height);
+  RenderSettings bs = subRenderSettings(s);
+  bs.spp = bootstrapSamplesPerPixel(s.mlt, double(s.width) * double(s.height));
+  bs.seed = streamKey(s.seed, kBootstrapStream, 0);
+  bs.tracer = setup.sharedTracer;
+  SeedStore store;
+  bs.seeds = &store;
+  size_t ordinal = 0;
+  bs.seedSink = [&](SeedStore& batch) {
+    boot.classify(
+        batch,
+        [&](const SeedStore& b, size_t i, size_t) {
+          const float e = luminance(b.contribution(i));
+          boot.energies.push_back(e);
+          boot.energyByLength[b.seeds.vertexCount[i]] += e;
+          boot.total += e;
+        },
+        [&](const SeedStore& b, size_t i) {
+          ms.inPlaceEnergy += depositSeedInPlace(density, b, i, luminance(b.contribution(i)), inPlace);
+          ++ms.inPlaceSeeds;
+        },
+        ordinal);
+  };
+  RenderStats bootStats;
+  renderPath(scene, bs, bootStats);
+  if (stopRequested(s.stop)) return partial();
+  const double spp = double(bs.spp);
+  ms.bootstrapSamples = bootStats.samples;
+  ms.domainSeeds = boot.energies.size();
+  ms.inPlaceEnergy /= spp;
+  ms.b = boot.total / spp;
+  model.setLengths(boot.energyByLength);
+
+  // The chains' start states, then the second trace keeping only them.
+  const double mutations = double(options.mutationsPerPixel) * double(s.width) * double(s.height);
+  const size_t chains = boot.energies.empty() ? 0 : size_t(std::min<double>(s.mlt.chains, mutations));
+  const uint32_t length = chains ? uint32_t(std::max(1.0, std::round(mutations / double(chains)))) : 0;
+  const std::vector<size_t> chosen =
+      resample(boot.energies, boot.total, chains, uniformFloat(streamKey(s.seed, kResampleStream, 0), 0));
+  SeedStore starts;
+  if (chains > 0) {
+    size_t next = 0;
+    ordinal = 0;
+    bs.seedSink = [&](SeedStore& batch) {
+      boot.classify(
+          batch,
+          [&](const SeedStore& b, size_t i, size_t k) {
+            size_t copies = 0;
+            while (next < chosen.size() && chosen[next] == k) ++copies, ++next;
+            if (copies) appendSeed(starts, b, i, copies);
+          },
+          [](const SeedStore&, size_t) {}, ordinal);
+    };
+    RenderStats again;
+    renderPath(scene, bs, again);
+    if (stopRequested(s.stop)) return partial();
+  }
+  ms.bootstrapSeconds = secondsSince(bootStart);
+  ms.chains = chains;
+  ms.chainLength = length;
+  ms.energyPerStep = chains ? ms.b / (double(chains) * double(length)) : 0;
+  stats.rays += bootStats.rays * (chains > 0 ? 2 : 1);
+  for (const auto& [name, seconds] : bootStats.stages.all()) stats.stages.add("bootstrap " + name, seconds);
+
+  // The chains.
+  options.chainLength = int(std::max<uint32_t>(length, 1));
+  ErptStepContext chainCtx = ctx;
+  chainCtx.settings = options;
+  StageContext largeCtx = setup.ctx;
+  largeCtx.seed = streamKey(s.seed, kLargeStepStream, 0);
+  largeCtx.spp = 1;
+  const LargeStepSource large(setup.tracer, largeCtx, uint32_t(s.width) * uint32_t(s.height));
+  ErptChains::Config config{chainCtx, s.seed, kErptLaneSlots, ms.energyPerStep, s.stop, setup.pool.threads(),
+                            &mltChooser(), &large};
+  ErptChains machine(setup.tracer, config, setup.film, stats.erpt, stats.stages);
+  const auto chainStart = std::chrono::steady_clock::now();
+  const bool done = chains == 0 || (machine.startChains(starts, float(ms.energyPerStep)) && machine.finish());
+  ms.chainSeconds = secondsSince(chainStart);
+  stats.erpt.erptSeconds = ms.chainSeconds;
+  stats.erpt.depositEnergy = ms.energyPerStep;
+  stats.rays += stats.erpt.rays;
+  if (!done) return partial();
+
+  RgbImage image = machine.image(1.0);
+  const RgbImage rest = inPlace.resolve(spp);
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    image.pixels[i] += rest.pixels[i];
+    if (!direct.pixels.empty()) image.pixels[i] += direct.pixels[i];
+  }
+  stats.spp = 1;
+  stats.samples = bootStats.samples;
+  return image;
+}
+
+}  // namespace erpt

@@ -1,0 +1,12 @@
+#pragma once
+
+#include "erpt/render.h"
+
+namespace erpt {
+
+// `--integrator mlt`: Metropolis light transport over ERPT's mutation engine (docs/mlt.md).
+// `settings` must be resolved. Throws UsageError naming the option for absurd settings.
+void validateMltSettings(const RenderSettings& settings);
+RgbImage renderMlt(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
+
+}  // namespace erpt
