@@ -27,6 +27,10 @@ float mltDomainWeight(const ErptStepContext& ctx, const PathVertex* path, int n,
 // streamKey(large-step seed, pixel, sample)).
 void largeStepSample(const ChainQueue& chains, size_t slot, uint32_t pixels, uint32_t& pixel, uint32_t& sample);
 
+// What the large step of chain `slot` asks of its sample: the vertex count n (drawn with
+// P(n)) and whether the next-event technique's candidate (drawn with P(nee | n)).
+void largeStepTarget(const LargeStepModel& m, const ChainQueue& chains, size_t slot, int& vertices, bool& nee);
+
 // The large steps' proposals: `samples` holds what the path tracer recorded for sample k of
 // [0, count) (SeedQueue::path = k), made for chain slot slotOf[k]. Each chain draws a vertex
 // count n (P(n)) and a technique (P(nee | n)) and proposes that candidate, if the sample made

@@ -14,9 +14,10 @@ void printMltSummary(const RenderStats& stats) {
                "%.4g), %.2f s\n",
                m.b, (unsigned long long)m.bootstrapSamples, (unsigned long long)m.domainSeeds,
                (unsigned long long)m.inPlaceSeeds, m.inPlaceEnergy, m.bootstrapSeconds);
-  std::fprintf(stderr, "mlt: %llu chains x %llu steps, %llu mutations (%.2f M/s in %.2f s), %.4g per step\n",
+  std::fprintf(stderr, "mlt: %llu chains x %llu steps, %llu mutations (%.2f M/s in %.2f s), %.4g per step; %llu rays in the chains\n",
                (unsigned long long)m.chains, (unsigned long long)m.chainLength, (unsigned long long)e.mutations,
-               m.chainSeconds > 0 ? double(e.mutations) / m.chainSeconds * 1e-6 : 0.0, m.chainSeconds, m.energyPerStep);
+               m.chainSeconds > 0 ? double(e.mutations) / m.chainSeconds * 1e-6 : 0.0, m.chainSeconds, m.energyPerStep,
+               (unsigned long long)e.rays);
   printChainMoves("mlt", e);
   printRejections("mlt", e);
   std::fprintf(stderr, "mlt: stage seconds:");

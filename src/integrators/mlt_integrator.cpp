@@ -42,7 +42,10 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 }
 
 // The large steps of a chain lane: the path tracer, run on the lane's thread over one sample
-// per large step, then stageMltLargeSteps.
+// per large step, then stageMltLargeSteps. The samples run in groups by the vertex count
+// their chain asks for, each group's walks stopped at that length (max depth n - 1): the
+// path tracer's decisions up to a path's last vertex do not depend on how far it may go on,
+// so the candidate is the same as a full walk's, at a fraction of the rays.
 class LargeStepSource final : public ProposalSource {
  public:
   LargeStepSource(const Tracer& tracer, const StageContext& ctx, uint32_t pixels)
@@ -55,17 +58,37 @@ class LargeStepSource final : public ProposalSource {
     for (size_t i = 0; i < q.chains.size(); ++i)
       if (q.proposals.state[i] == kProposalLarge) s.slots.push_back(uint32_t(i));
     if (s.slots.empty()) return 0;
-    s.pixel.resize(s.slots.size());
-    s.sample.resize(s.slots.size());
-    for (size_t k = 0; k < s.slots.size(); ++k) largeStepSample(q.chains, s.slots[k], pixels_, s.pixel[k], s.sample[k]);
-    const PathSampleSet samples{s.slots.size(), [&](size_t k, uint32_t& pixel, uint32_t& sample) {
-                                  pixel = s.pixel[k];
-                                  sample = s.sample[k];
-                                }};
-    s.store.clear();
+    // Slots by the vertex count their chain asks for (a counting sort, slot order kept).
+    std::vector<size_t> firstOf(kMaxChainVertices + 2, 0);
+    s.vertices.resize(s.slots.size());
+    for (size_t k = 0; k < s.slots.size(); ++k) {
+      bool nee;
+      largeStepTarget(*ctx.largeSteps, q.chains, s.slots[k], s.vertices[k], nee);
+      ++firstOf[size_t(s.vertices[k]) + 1];
+    }
+    for (size_t n = 1; n < firstOf.size(); ++n) firstOf[n] += firstOf[n - 1];
+    s.grouped.resize(s.slots.size());
+    std::vector<size_t> next(firstOf.begin(), firstOf.end() - 1);
+    for (size_t k = 0; k < s.slots.size(); ++k) s.grouped[next[size_t(s.vertices[k])]++] = s.slots[k];
+    uint64_t rays = 0;
     StageTimes pathTimes;
-    const uint64_t rays = traceSeedsInline(tracer_, ctx_, samples, s.store, s.path, pathTimes);
-    stageMltLargeSteps(ctx, q.chains, s.store, s.slots.data(), s.slots.size(), q.proposals, q.proposalVertices);
+    for (int n = 0; n <= kMaxChainVertices; ++n) {
+      const size_t begin = firstOf[size_t(n)], count = firstOf[size_t(n) + 1] - begin;
+      if (count == 0) continue;
+      const uint32_t* slots = s.grouped.data() + begin;
+      s.pixel.resize(count);
+      s.sample.resize(count);
+      for (size_t k = 0; k < count; ++k) largeStepSample(q.chains, slots[k], pixels_, s.pixel[k], s.sample[k]);
+      const PathSampleSet samples{count, [&](size_t k, uint32_t& pixel, uint32_t& sample) {
+                                    pixel = s.pixel[k];
+                                    sample = s.sample[k];
+                                  }};
+      StageContext group = ctx_;
+      group.maxDepth = ctx_.maxDepth >= 0 ? std::min(ctx_.maxDepth, n - 1) : n - 1;
+      s.store.clear();
+      rays += traceSeedsInline(tracer_, group, samples, s.store, s.path, pathTimes);
+      stageMltLargeSteps(ctx, q.chains, s.store, slots, count, q.proposals, q.proposalVertices);
+    }
     if (times) times->add("erpt large step", secondsSince(start));
     return rays;
   }
@@ -74,7 +97,8 @@ class LargeStepSource final : public ProposalSource {
   struct Scratch {
     PathTracerScratch path;
     SeedStore store;
-    std::vector<uint32_t> slots, pixel, sample;
+    std::vector<uint32_t> slots, grouped, pixel, sample;
+    std::vector<int> vertices;
   };
   const Tracer& tracer_;
   StageContext ctx_;  // the render's, with the large steps' seed and one stratum per pixel

@@ -66,6 +66,13 @@ void largeStepSample(const ChainQueue& chains, size_t slot, uint32_t pixels, uin
   sample = uniformUint(key, stepDim(step, kDimLargeStep + 1));
 }
 
+void largeStepTarget(const LargeStepModel& m, const ChainQueue& chains, size_t slot, int& vertices, bool& nee) {
+  const uint64_t key = chains.key[slot];
+  const uint32_t step = chains.step[slot];
+  vertices = drawLength(m, uniformFloat(key, stepDim(step, kDimStart2)));
+  nee = uniformFloat(key, stepDim(step, kDimPerturb)) < LargeStepModel::neeProbability(vertices);
+}
+
 void stageMltLargeSteps(const ErptStepContext& ctx, const ChainQueue& chains, const SeedStore& samples,
                         const uint32_t* slotOf, size_t count, ProposalQueue& proposals, VertexQueue& proposalVertices) {
   const LargeStepModel& m = *ctx.largeSteps;
@@ -73,11 +80,11 @@ void stageMltLargeSteps(const ErptStepContext& ctx, const ChainQueue& chains, co
   std::vector<uint8_t> wantVertices(count), wantNee(count);
   std::vector<int64_t> candidate(count, -1);
   for (size_t k = 0; k < count; ++k) {
-    const uint64_t key = chains.key[slotOf[k]];
-    const uint32_t step = chains.step[slotOf[k]];
-    const int n = drawLength(m, uniformFloat(key, stepDim(step, kDimStart2)));
+    int n;
+    bool nee;
+    largeStepTarget(m, chains, slotOf[k], n, nee);
     wantVertices[k] = uint8_t(n);
-    wantNee[k] = uniformFloat(key, stepDim(step, kDimPerturb)) < LargeStepModel::neeProbability(n);
+    wantNee[k] = nee;
   }
   const SeedQueue& seeds = samples.seeds;
   for (size_t s = 0; s < samples.size(); ++s) {
