@@ -10,7 +10,7 @@
 //      total luminance, divided by the samples per pixel, is b, the image's normalisation.
 //   3. Chains (--chains C): start states resampled from the bootstrap's domain contributions in
 //      proportion to their luminance (systematic resampling, its own stream; the bootstrap is
-//      traced a second time, bit-identically, to keep only the chosen paths). Each chain runs
+//      traced a second time, bit-identically, for the chosen paths' samples only). Each chain runs
 //      L = M pixels / C steps (M: --mutations-per-pixel), each step a large step with
 //      probability --large-step-prob, else ERPT's lens or caustic perturbation, and deposits
 //      b / (C L) as expected values at the current and the proposed path.
@@ -21,6 +21,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <stdexcept>
+#include <unordered_map>
 
 #include "erpt/erpt_chains.h"
 #include "erpt/mlt_stages.h"
@@ -209,7 +211,9 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
     return RgbImage{s.width, s.height, std::vector<Color>(size_t(s.width) * size_t(s.height), Color(0.0f)), {}};
   };
 
-  // Bootstrap, first trace: b, the energy by length, and the contributions the chains do not hold.
+  // Bootstrap, first trace: b, the energy by length, and the contributions the chains do not
+  // hold. Sample k is sample k / P of pixel order[k % P]; each domain contribution is noted
+  // by its sample and its (vertex count, technique), which name it within its sample.
   auto bootStart = std::chrono::steady_clock::now();
   Bootstrap boot{ctx, options.directSamples > 0, {}};
   Film inPlace(s.width, s.height);
@@ -217,10 +221,20 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   bs.spp = bootstrapSamplesPerPixel(s.mlt, double(s.width) * double(s.height));
   bs.seed = streamKey(s.seed, kBootstrapStream, 0);
   bs.tracer = setup.sharedTracer;
+  const RenderSetup bootSetup(scene, bs);
+  const size_t pixels = bootSetup.order.size();
+  const PathSampleSet all{pixels * size_t(bs.spp), [&](size_t k, uint32_t& pixel, uint32_t& sample) {
+                            pixel = bootSetup.order[k % pixels];
+                            sample = uint32_t(k / pixels);
+                          }};
+  struct Origin {
+    uint64_t sample;
+    uint8_t vertices, explicitLight;
+  };
+  std::vector<Origin> origins;  // per domain ordinal
   SeedStore store;
-  bs.seeds = &store;
   size_t ordinal = 0;
-  bs.seedSink = [&](SeedStore& batch) {
+  auto firstSink = [&](SeedStore& batch) {
     boot.classify(
         batch,
         [&](const SeedStore& b, size_t i, size_t) {
@@ -228,6 +242,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
           boot.energies.push_back(e);
           boot.energyByLength[b.seeds.vertexCount[i]] += e;
           boot.total += e;
+          origins.push_back({b.seeds.path[i], uint8_t(b.seeds.vertexCount[i]), b.seeds.explicitLight[i]});
         },
         [&](const SeedStore& b, size_t i) {
           ms.inPlaceEnergy += depositSeedInPlace(density, b, i, luminance(b.contribution(i)), inPlace);
@@ -236,8 +251,9 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
         ordinal);
   };
   RenderStats bootStats;
-  renderPath(scene, bs, bootStats);
-  if (stopRequested(s.stop)) return partial();
+  if (!tracePathSamples(bootSetup, all, PathTraceOutput{nullptr, nullptr, &store, firstSink, nullptr, s.stop},
+                        bootStats))
+    return partial();
   const double spp = double(bs.spp);
   ms.bootstrapSamples = bootStats.samples;
   ms.domainSeeds = boot.energies.size();
@@ -245,7 +261,8 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   ms.b = boot.total / spp;
   model.setLengths(boot.energyByLength);
 
-  // The chains' start states, then the second trace keeping only them.
+  // The chains' start states; the second trace runs only the samples that made them (the
+  // same paths, bit for bit: a sample's random stream is keyed by its pixel and number).
   const double mutations = double(options.mutationsPerPixel) * double(s.width) * double(s.height);
   const size_t chains = boot.energies.empty() ? 0 : size_t(std::min<double>(s.mlt.chains, mutations));
   const uint32_t length = chains ? uint32_t(std::max(1.0, std::round(mutations / double(chains)))) : 0;
@@ -253,27 +270,38 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
       resample(boot.energies, boot.total, chains, uniformFloat(streamKey(s.seed, kResampleStream, 0), 0));
   SeedStore starts;
   if (chains > 0) {
-    size_t next = 0;
-    ordinal = 0;
-    bs.seedSink = [&](SeedStore& batch) {
-      boot.classify(
-          batch,
-          [&](const SeedStore& b, size_t i, size_t k) {
-            size_t copies = 0;
-            while (next < chosen.size() && chosen[next] == k) ++copies, ++next;
-            if (copies) appendSeed(starts, b, i, copies);
-          },
-          [](const SeedStore&, size_t) {}, ordinal);
-    };
-    RenderStats again;
-    renderPath(scene, bs, again);
-    if (stopRequested(s.stop)) return partial();
+    std::vector<uint64_t> again;  // the samples to trace again, ascending
+    for (size_t c : chosen) again.push_back(origins[c].sample);
+    std::sort(again.begin(), again.end());
+    again.erase(std::unique(again.begin(), again.end()), again.end());
+    const PathSampleSet some{again.size(), [&](size_t j, uint32_t& pixel, uint32_t& sample) { all.at(again[j], pixel, sample); }};
+    SeedStore retraced;
+    RenderStats secondStats;
+    if (!tracePathSamples(bootSetup, some, PathTraceOutput{nullptr, nullptr, &retraced, {}, nullptr, s.stop},
+                          secondStats))
+      return partial();
+    bootStats.rays += secondStats.rays;
+    // Each chosen contribution: its sample's row j in `again`, then its (count, technique).
+    auto name = [](uint64_t j, uint32_t vertices, uint32_t explicitLight) { return (j << 8) | (vertices << 1) | explicitLight; };
+    std::unordered_map<uint64_t, size_t> byName;
+    for (size_t i = 0; i < retraced.size(); ++i)
+      byName.emplace(name(retraced.seeds.path[i], retraced.seeds.vertexCount[i], retraced.seeds.explicitLight[i]), i);
+    for (size_t next = 0; next < chosen.size();) {
+      size_t copies = 1;
+      while (next + copies < chosen.size() && chosen[next + copies] == chosen[next]) ++copies;
+      const Origin& o = origins[chosen[next]];
+      const uint64_t j = uint64_t(std::lower_bound(again.begin(), again.end(), o.sample) - again.begin());
+      const auto it = byName.find(name(j, o.vertices, o.explicitLight));
+      if (it == byName.end()) throw std::logic_error("mlt: a bootstrap path did not trace again identically");
+      appendSeed(starts, retraced, it->second, copies);
+      next += copies;
+    }
   }
   ms.bootstrapSeconds = secondsSince(bootStart);
   ms.chains = chains;
   ms.chainLength = length;
   ms.energyPerStep = chains ? ms.b / (double(chains) * double(length)) : 0;
-  stats.rays += bootStats.rays * (chains > 0 ? 2 : 1);
+  stats.rays += bootStats.rays;
   for (const auto& [name, seconds] : bootStats.stages.all()) stats.stages.add("bootstrap " + name, seconds);
 
   // The chains.
