@@ -14,8 +14,9 @@
 //      L = M pixels / C steps (M: --mutations-per-pixel), each step a large step with
 //      probability --large-step-prob, else ERPT's lens or caustic perturbation, and deposits
 //      b / (C L) as expected values at the current and the proposed path.
-//   image = chains + in-place contributions + direct pass. MLT is consistent, not unbiased: b is
-//   an estimate, and the chains start from an approximation of their stationary distribution.
+//   image = chains + in-place contributions + direct pass. A chain alone is only consistent
+//   (it starts from an approximation of its stationary distribution); the render is unbiased
+//   in expectation, since b and the start states come from the same bootstrap (docs/mlt.md).
 #include "mlt_integrator.h"
 
 #include <algorithm>

@@ -1,8 +1,8 @@
 // MLT in whole renders: against the references (channel means, error falling with work) and
-// against the path tracer block by block; deterministic for any thread count. MLT is
-// consistent, not unbiased per render (b is estimated, and the chains start from the
-// bootstrap's approximation of their stationary distribution), so these compare renders whose
-// start-up bias is far below their noise.
+// against the path tracer block by block; deterministic for any thread count. A chain alone is
+// only consistent, but a render is unbiased in expectation (b and the chains' start states
+// come from one bootstrap; docs/mlt.md), so renders from independent seeds are compared as
+// unbiased estimators.
 #include <gtest/gtest.h>
 
 #include <cstdio>
