@@ -115,7 +115,7 @@ struct Bootstrap {
   const ErptStepContext& ctx;
   bool excludeDirect;
   std::vector<float> energies;               // luminance of the domain contributions, in order
-  double energyByLength[kMaxChainVertices + 1] = {};
+  double energyByLength[kMaxChainVertices + 1] = {}, neeEnergyByLength[kMaxChainVertices + 1] = {};
   double total = 0;                          // sum of energies
   // Calls `domain(batch, i, ordinal)` for every contribution the chains hold, in order, and
   // `outside(batch, i)` for every other one with energy.
@@ -242,6 +242,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
           const float e = luminance(b.contribution(i));
           boot.energies.push_back(e);
           boot.energyByLength[b.seeds.vertexCount[i]] += e;
+          if (b.seeds.explicitLight[i]) boot.neeEnergyByLength[b.seeds.vertexCount[i]] += e;
           boot.total += e;
           origins.push_back({b.seeds.path[i], uint8_t(b.seeds.vertexCount[i]), b.seeds.explicitLight[i]});
         },
@@ -260,7 +261,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   ms.domainSeeds = boot.energies.size();
   ms.inPlaceEnergy /= spp;
   ms.b = boot.total / spp;
-  model.setLengths(boot.energyByLength);
+  model.setLengths(boot.energyByLength, boot.neeEnergyByLength);
 
   // The chains' start states; the second trace runs only the samples that made them (the
   // same paths, bit for bit: a sample's random stream is keyed by its pixel and number).

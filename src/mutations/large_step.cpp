@@ -12,17 +12,21 @@
 
 namespace erpt {
 
-void LargeStepModel::setLengths(const double* energyByLength) {
+void LargeStepModel::setLengths(const double* energyByLength, const double* neeEnergyByLength) {
+  constexpr double kUniform = 0.3, kMinTechnique = 0.1;
   double total = 0;
   for (int n = minVertices; n <= maxVertices; ++n) total += energyByLength[n];
   const int lengths = maxVertices - minVertices + 1;
   for (int n = 0; n <= kMaxChainVertices; ++n) {
+    neeShare[n] = 0.5f;
     if (n < minVertices || n > maxVertices) {
       lengthProbability[n] = 0;
       continue;
     }
     const double byEnergy = total > 0 ? energyByLength[n] / total : 1.0 / lengths;
-    lengthProbability[n] = float(0.5 * byEnergy + 0.5 / lengths);
+    lengthProbability[n] = float((1 - kUniform) * byEnergy + kUniform / lengths);
+    if (neeEnergyByLength && energyByLength[n] > 0)
+      neeShare[n] = float(std::clamp(neeEnergyByLength[n] / energyByLength[n], kMinTechnique, 1 - kMinTechnique));
   }
 }
 
@@ -95,7 +99,7 @@ float largeStepWeight(const MeasureContext& c, const LargeStepModel& m, const Pa
   if (n < m.minVertices || n > m.maxVertices) return 0.0f;
   LargeStepTerms t;
   if (!largeStepTerms(c, m.rrDepth, path, n, t)) return 0.0f;
-  const float pNee = LargeStepModel::neeProbability(n);
+  const float pNee = m.neeProbability(n);
   const float q = m.lengthProbability[n] * ((1 - pNee) * t.pHit + pNee * t.pNee);
   const float w = luminance(t.value) / q;
   return q > 0 && std::isfinite(w) && w > 0 ? w : 0.0f;

@@ -70,7 +70,7 @@ void largeStepTarget(const LargeStepModel& m, const ChainQueue& chains, size_t s
   const uint64_t key = chains.key[slot];
   const uint32_t step = chains.step[slot];
   vertices = drawLength(m, uniformFloat(key, stepDim(step, kDimStart2)));
-  nee = uniformFloat(key, stepDim(step, kDimPerturb)) < LargeStepModel::neeProbability(vertices);
+  nee = uniformFloat(key, stepDim(step, kDimPerturb)) < m.neeProbability(vertices);
 }
 
 void stageMltLargeSteps(const ErptStepContext& ctx, const ChainQueue& chains, const SeedStore& samples,

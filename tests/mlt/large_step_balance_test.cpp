@@ -54,7 +54,7 @@ double recordedDensity(const ErptWorld& w, const LargeStepModel& m, size_t s) {
   // specular vertex cannot connect.
   const double pHit = n == 2 ? 1.0 : pointLight ? 0.0 : double(v.pdfForward[b + size_t(n - 2)]) * areaFactor(c, x[n - 2], x[n - 1]);
   const double pNee = n == 2 || x[n - 2].kind == kSpecularVertex ? 0.0 : double(q.pLight[s]);
-  const double pn = LargeStepModel::neeProbability(n);
+  const double pn = m.neeProbability(n);
   return common * double(m.lengthProbability[n]) * ((1 - pn) * pHit + pn * pNee);
 }
 
@@ -91,7 +91,8 @@ void expectLargeStepBalances(const ErptWorld& w, const char* name) {
   model.minVertices = 2;
   // A length distribution far from uniform, so that P(n) does not cancel between lengths.
   const double energy[kMaxChainVertices + 1] = {0, 0, 5, 40, 20, 3, 1, 0.5, 0.2, 0.1, 0.05, 0.02, 0.01};
-  model.setLengths(energy);
+  const double nee[kMaxChainVertices + 1] = {0, 0, 0, 36, 4, 2, 0.5, 0.1, 0.1, 0.08, 0.01, 0.01, 0.005};
+  model.setLengths(energy, nee);
   ErptStepContext ctx = w.stepContext(MutationStrategy::Paper);
   ctx.settings.expectedDeposit = true;
   ctx.largeSteps = &model;
