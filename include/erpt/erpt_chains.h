@@ -92,6 +92,9 @@ class ErptChains {
   // Runs every lane on the pool's threads: until the batch's chains are all in a queue
   // (drain = false) or until no chain is left (drain = true). False: stopped.
   bool runLanes(bool drain);
+  // Numbers the `chains` of pending_ (batch_ set) after those of earlier batches, runs the
+  // lanes until all are in a queue, and lets go of the batch.
+  bool runBatch(size_t chains);
   bool runLane(Lane& lane, bool drain);
   // Loads the batch's next chains into the lane's free slots; true while chains of the batch
   // are still waiting for a slot afterwards.

@@ -114,6 +114,10 @@ bool ErptChains::consume(const SeedStore& batch) {
     pending_.push_back(PendingSeed{st.seed, st.copies, st.energy, chains});
     chains += st.copies;
   }
+  return runBatch(chains);
+}
+
+bool ErptChains::runBatch(size_t chains) {
   stats_.chains += chains;
   // The batch's chains are numbered in seed order, as one queue would have loaded them.
   chainBase_ = chainCounter_;
@@ -130,14 +134,7 @@ bool ErptChains::startChains(const SeedStore& starts, float energyPerStep) {
   pending_.clear();
   for (size_t i = 0; i < starts.size(); ++i) pending_.push_back(PendingSeed{uint32_t(i), 1, energyPerStep, i});
   stats_.seeds += starts.size();
-  stats_.chains += starts.size();
-  chainBase_ = chainCounter_;
-  chainCounter_ += starts.size();
-  batchChains_ = starts.size();
-  nextChain_ = 0;
-  const bool done = runLanes(false);
-  batch_ = nullptr;
-  return done;
+  return runBatch(starts.size());
 }
 
 bool ErptChains::finish() { return runLanes(true); }

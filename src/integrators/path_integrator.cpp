@@ -248,15 +248,16 @@ bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
     batch.resize(n);
     if (out.seeds) {
       SeedRecording rec{*out.seeds, {}};
-      traceSamples(setup.tracer, setup.ctx, samples, first, n, n, shared, StageRunner{true, stats.stages}, batch, first, &rec, rayCount);
+      traceSamples(setup.tracer, setup.ctx, samples, first, n, n, shared, StageRunner{true, stats.stages}, batch, first,
+                   &rec, rayCount);
     } else {
       // One task per chunk of samples, each on its thread's own wavefront.
       forEachRange("path chunks", (n + kChunkSamples - 1) / kChunkSamples, 1, [&](IndexRange chunks) {
         for (size_t c = chunks.begin; c < chunks.end; ++c) {
           StageTimes times;
           const size_t begin = first + c * kChunkSamples, count = std::min(kChunkSamples, first + n - begin);
-          traceSamples(setup.tracer, setup.ctx, samples, begin, count, kTaskQueue, local.local(), StageRunner{false, times}, batch,
-                       first, nullptr, rayCount);
+          traceSamples(setup.tracer, setup.ctx, samples, begin, count, kTaskQueue, local.local(),
+                       StageRunner{false, times}, batch, first, nullptr, rayCount);
           // Stage times of the tasks, in seconds of the whole pool (thread time / threads).
           std::lock_guard<std::mutex> lock(timesMutex);
           for (const auto& [stage, seconds] : times.all()) stats.stages.add(stage, seconds / threads);

@@ -9,6 +9,7 @@
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
 #include "support/image_stats.h"
+#include "support/cornell_references.h"
 #include "support/test_support.h"
 
 namespace erpt {
@@ -62,10 +63,7 @@ void expectMeansWithin(const RgbImage& img, const RgbImage& ref, double toleranc
 // means within 1% of Tungsten's render, and relative MSE against the 128x128 reference
 // falling by about 4 when seeds and mutations grow 4x (no bias floor).
 TEST(StatisticalErpt, CornellBoxMatchesReferences) {
-  const std::string dir = test::sharedScenesDir() + "/cornell-box";
-  const Scene scene = loadScene(dir + "/scene.xml");
-  const RgbImage tungsten = readImage(dir + "/TungstenRender.exr");
-  const RgbImage ref = readImage(dir + "/reference-box-128.exr");
+  const Scene scene = test::cornellBox();
   ErptRun low;
   low.spp = 8;
   low.mutations = 50;
@@ -75,11 +73,7 @@ TEST(StatisticalErpt, CornellBoxMatchesReferences) {
   high.mutations = 200;
   high.seed = 2;
   const RgbImage a = renderErptImage(scene, low), b = renderErptImage(scene, high);
-  expectMeansWithin(b, tungsten, 0.01);
-  const double ea = test::relativeMse(a, ref), eb = test::relativeMse(b, ref);
-  std::printf("relMSE %.3g -> %.3g, ratio %.2f\n", ea, eb, ea / eb);
-  EXPECT_GT(ea / eb, 2.8);
-  EXPECT_LT(ea / eb, 6.0);
+  test::expectCornellBoxConverges(a, b, 2.8, 6.0);
 }
 
 // The default configuration (one-bounce paths by the direct pass) on the default scene, whose

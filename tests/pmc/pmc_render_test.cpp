@@ -9,6 +9,7 @@
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
 #include "support/block_bias.h"
+#include "support/cornell_references.h"
 #include "support/image_stats.h"
 #include "support/test_support.h"
 
@@ -68,10 +69,7 @@ TEST(StatisticalPmc, PlasticBoxMemberAdaptationBlockByBlock) {
 // radii 5/10/50, region adaptation): channel means within 1% of Tungsten's render, and the
 // relative MSE against the 128x128 reference falling about 4x for 4x the pool (no floor).
 TEST(StatisticalPmc, CornellBoxMatchesReferences) {
-  const std::string dir = test::sharedScenesDir() + "/cornell-box";
-  const Scene scene = loadScene(dir + "/scene.xml");
-  const RgbImage tungsten = readImage(dir + "/TungstenRender.exr");
-  const RgbImage ref = readImage(dir + "/reference-box-128.exr");
+  const Scene scene = test::cornellBox();
   RenderSettings low = pmcSettings(4, PmcFlow::EqualDeposition, PmcAdapt::Region, 5000);
   low.width = low.height = 128;
   low.filterSet = true;
@@ -81,13 +79,7 @@ TEST(StatisticalPmc, CornellBoxMatchesReferences) {
   high.seed = 2;
   RenderStats stats;
   const RgbImage a = renderImage(scene, low), b = renderImage(scene, high, &stats);
-  const Color m = meanOf(b), r = meanOf(tungsten);
-  std::printf("means %.4f %.4f %.4f vs %.4f %.4f %.4f\n", m.x, m.y, m.z, r.x, r.y, r.z);
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c] / r[c], 1.0, 0.01) << "channel " << c;
-  const double ea = test::relativeMse(a, ref), eb = test::relativeMse(b, ref);
-  std::printf("relMSE %.3g -> %.3g, ratio %.2f\n", ea, eb, ea / eb);
-  EXPECT_GT(ea / eb, 2.8);
-  EXPECT_LT(ea / eb, 6.0);
+  test::expectCornellBoxConverges(a, b, 2.8, 6.0);
   // Every pool position was used, and the pilot's e_d (eq. 4) is what a step deposited on
   // average (the energy bookkeeping adds up; both are estimates, within a few percent).
   EXPECT_EQ(stats.pmc.poolUsed, stats.pmc.poolSize);
