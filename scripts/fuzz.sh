@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Coverage-guided fuzzing of the scene loader and the mesh readers with clang's libFuzzer,
 # under AddressSanitizer + UndefinedBehaviorSanitizer. Usage: scripts/fuzz.sh [SECONDS per
-# target, default 60] [targets..., default: scene_xml obj ply serialized]
+# target, default 60] [targets..., default: scene_xml scene_camera obj ply serialized]
 # Builds in build-fuzz/ (clang); each target starts from tests/fuzz/corpus/<target> and keeps
 # what it learns in build-fuzz/corpus/<target>; a crashing input is written to build-fuzz/
 # (crash-*) and the script fails. The sanitizer suite runs each target for 60 s the same way.
@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(scene_xml obj ply serialized)
+[ ${#targets[@]} -eq 0 ] && targets=(scene_xml scene_camera obj ply serialized)
 bash scripts/setup.sh clang libclang-rt-14-dev llvm
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fsanitize=fuzzer-no-link -fno-omit-frame-pointer"
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang \

@@ -17,6 +17,19 @@ struct BsdfSample {
 };
 
 Color bsdfEval(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo);
+// The relative index of refraction crossed from wi's side to wo's: the eta of the BsdfSample
+// that goes from wi to wo (1 for reflection, and for materials that do not bend light).
+float bsdfEta(const Material& m, Vec3 wi, Vec3 wo);
+
+// Russian roulette's survival probability for a path of throughput `throughput` (with the
+// weight of the bounce just sampled) that has crossed refractive boundaries with squared
+// relative indices multiplying to etaSquared: Mitsuba 0.6's min(0.95, max(throughput) eta^2).
+// The eta^2 undoes the radiance compression of refraction (a BSDF weight of 1/eta^2 on entering
+// glass), which would otherwise end paths inside glass objects early and leave the pixels
+// behind them black.
+inline float russianRouletteSurvival(const Color& throughput, float etaSquared) {
+  return std::min(0.95f, maxComponent(throughput) * etaSquared);
+}
 float bsdfPdf(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo);
 // u1 picks a lobe, (u2, u3) the direction. Returns false when nothing can be sampled.
 bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wi, float u1, float u2, float u3, BsdfSample& out);

@@ -33,8 +33,10 @@ inline void unpackSignature(uint64_t signature, int n, uint8_t* kinds) {
 }
 
 // Equal deposition (paper figure 6): a seed of energy e starts floor(u + e / (m e_d)) chains
-// of m steps, each step depositing e_d; u uniform in [0, 1) makes the expectation exact.
-uint32_t chainsForSeed(double energy, double chainLength, double depositEnergy, float u);
+// of m steps, each step depositing e_d; u uniform in [0, 1) makes the expectation exact. u has
+// 53 bits (uniformDouble): with a 24-bit u a seed expecting fewer than 2^-24 chains would
+// never start one, and its energy would be lost.
+uint32_t chainsForSeed(double energy, double chainLength, double depositEnergy, double u);
 
 // Perturbation angle for caustic perturbations and the direction changes of lens
 // perturbations: density proportional to 1/theta on [1e-4, 0.1] rad (Veach and Guibas 1997,

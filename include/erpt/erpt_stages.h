@@ -77,6 +77,8 @@ struct ErptQueues {
   HitQueue denseHits;
   std::vector<uint32_t> denseSlots;
   explicit ErptQueues(size_t capacity);
+  // Memory one slot takes in every queue above (their capacity's share).
+  static size_t bytesPerSlot();
 };
 
 // Loads the current path of chain `slot` into `out` (kMaxChainVertices entries); returns its

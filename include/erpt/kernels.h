@@ -34,6 +34,6 @@ struct LightConnection {
 
 // Next-event estimation at a surface point; false when the sample carries nothing.
 bool connectToLight(const LightSampler& lights, const SurfacePoint& sp, const Material& m, const SurfaceColors& colors,
-                    Vec3 wiLocal, float uPick, float u1, float u2, LightConnection& out);
+                    Vec3 wiLocal, double uPick, float u1, float u2, LightConnection& out);
 
 }  // namespace erpt

@@ -35,7 +35,7 @@ class LightSampler {
   explicit LightSampler(const Scene& scene);
   bool empty() const { return cdf_.empty(); }
   // Samples a light as seen from `ref`; false if the sample carries nothing.
-  bool sample(Vec3 ref, float uPick, float u1, float u2, LightSample& out) const;
+  bool sample(Vec3 ref, double uPick, float u1, float u2, LightSample& out) const;
   // Solid-angle pdf at `ref` that sample() picks the surface point `light` (a ray from ref
   // hit it).
   float pdfSolidAngle(const SurfacePoint& light, Vec3 ref) const;

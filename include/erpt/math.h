@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <string>
 #include <cmath>
 #include <cstdint>
 
@@ -97,6 +98,13 @@ struct Transform {
   Vec3 normal(Vec3 n) const;
   bool isFinite() const;
   double determinant3x3() const;
+  // Why this transform cannot place geometry or a camera in single-precision world space,
+  // or "" if it can: every entry finite and within float range, the bottom row affine
+  // (0 0 0 1), and, unless the linear part is singular, an inverse (normals, cameras and
+  // environment maps use it) whose entries are within float range too. A singular linear part
+  // is not a defect here (a zero scale hides a shape, as in Mitsuba); callers that need an
+  // inverse check determinant3x3().
+  std::string defect() const;
 };
 
 }  // namespace erpt

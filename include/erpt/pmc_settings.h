@@ -41,7 +41,9 @@ struct PmcSettings {
 struct PmcStats {
   uint64_t iterations = 0, drainIterations = 0, trainingIterations = 0;
   uint64_t population = 0;
+  uint64_t requestedPopulation = 0;       // --population; `population` is it bounded by the pool (pixels x spp)
   uint64_t poolSize = 0, poolUsed = 0;    // stratified film positions: all, and traced
+  double poolEnergy = 0;                  // luminance of the traced positions' seeds (e_ave = poolEnergy / poolUsed)
   uint64_t candidates = 0;                // pool positions that gave a member candidate
   uint64_t inPlaceSeeds = 0;              // seeds no mutation can move, deposited where they are
   uint64_t membersBorn = 0, eliminated = 0, split = 0;  // resampling: candidates that became members, members dropped, extra copies

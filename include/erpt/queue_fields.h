@@ -52,6 +52,7 @@
   F(float, filmX, {}, "film position of the camera ray, x in pixels")                               \
   F(float, filmY, {}, "film position, y in pixels")                                                 \
   F(float, pLength, {}, "product of Russian-roulette survival probabilities so far (ERPT's p_length)") \
+  F(float, etaSquared, {}, "product of the squared relative IORs crossed so far (Russian roulette's boost)") \
   F(int32_t, lastVertex, {}, "seed recording: index of the path's newest vertex in the vertex history")
 
 // One live path's place in the ray streams: slot k of the ray, hit and shadow-ray queues

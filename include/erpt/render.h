@@ -93,6 +93,7 @@ struct RenderStats {
   uint64_t samples = 0;
   uint64_t rays = 0;
   uint64_t invalidSamples = 0;  // NaN/Inf estimates, dropped and counted
+  uint64_t refusedRays = 0;     // rays the tracer would not trace (kRefusedRay), over the render
   StageTimes stages;
   ErptStats erpt;  // ERPT; for PMC-ER the chain step's counts
   PmcStats pmc;

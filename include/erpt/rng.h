@@ -17,12 +17,31 @@ inline uint64_t mix64(uint64_t z) {
 
 inline uint64_t streamKey(uint64_t seed, uint64_t a, uint64_t b) { return mix64(mix64(seed ^ mix64(a)) + b); }
 
-// Uniform float in [0, 1) for dimension `dim` of stream `key`.
-inline float uniformFloat(uint64_t key, uint32_t dim) {
-  return float(mix64(key + 0x632be59bd9b4e019ull * (uint64_t(dim) + 1)) >> 40) * 0x1p-24f;
-}
-inline uint32_t uniformUint(uint64_t key, uint32_t dim) {
-  return uint32_t(mix64(key + 0x632be59bd9b4e019ull * (uint64_t(dim) + 1)) >> 32);
+// The 64 random bits of dimension `dim` of stream `key`; every draw below uses their top bits.
+inline uint64_t uniformBits(uint64_t key, uint32_t dim) { return mix64(key + 0x632be59bd9b4e019ull * (uint64_t(dim) + 1)); }
+
+// Uniform float in [0, 1) for dimension `dim` of stream `key`: 24 bits, for continuous
+// variables (positions, directions). Never scale it to an index or compare it with a
+// probability that may be below 2^-24: use uniformIndex or uniformDouble.
+inline float uniformFloat(uint64_t key, uint32_t dim) { return float(uniformBits(key, dim) >> 40) * 0x1p-24f; }
+inline uint32_t uniformUint(uint64_t key, uint32_t dim) { return uint32_t(uniformBits(key, dim) >> 32); }
+// Uniform double in [0, 1), 53 bits, whose top 24 bits are uniformFloat's: for inverting
+// discrete CDFs and for coins against small probabilities. Every float in [2^-29, 1) is a
+// multiple of 2^-53, so P(a <= u < b) = b - a exactly for such floats a < b.
+inline double uniformDouble(uint64_t key, uint32_t dim) { return double(uniformBits(key, dim) >> 11) * 0x1p-53; }
+
+// Uniform integer in [0, n), n >= 1, with every value exactly equally likely: Lemire's
+// multiply-shift on 64 bits, rejecting the low products that would favour some values (a
+// rejection happens with probability below n / 2^64; it redraws from the next bits of a
+// derived stream). floor(u * n) with a 24-bit float u is not uniform unless n is a power of 2.
+inline uint64_t uniformIndex(uint64_t key, uint32_t dim, uint64_t n) {
+  const uint64_t threshold = (0 - n) % n;  // 2^64 mod n
+  uint64_t bits = uniformBits(key, dim);
+  for (uint64_t attempt = 1;; ++attempt) {
+    const unsigned __int128 product = (unsigned __int128)bits * n;
+    if (uint64_t(product) >= threshold) return uint64_t(product >> 64);
+    bits = mix64(bits + attempt);
+  }
 }
 
 // A stream with a running dimension counter, for code that draws many numbers in sequence.

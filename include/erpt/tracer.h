@@ -15,6 +15,11 @@ enum class RayCoherence { Coherent, Incoherent };
 
 // HitQueue::geomID of a ray that hit nothing (Embree's RTC_INVALID_GEOMETRY_ID).
 constexpr unsigned kNoHit = 0xffffffffu;
+// HitQueue::geomID of a ray the tracer refused to trace: a non-finite origin or direction, a
+// zero direction or a NaN interval (src/tracer/untraceable_rays.h). Such a ray comes from a
+// defect upstream; stages drop the sample it belongs to (the path tracer counts it invalid)
+// or reject the proposal, and never read the hit.
+constexpr unsigned kRefusedRay = 0xfffffffeu;
 
 class Tracer {
  public:
@@ -25,8 +30,10 @@ class Tracer {
 
   // Closest hits for rays[range]; writes hits[range] and shortens rays.tfar to the hit.
   void intersect(RayQueue& rays, HitQueue& hits, IndexRange range, RayCoherence coherence) const;
-  // Any-hit test for rays[range]: occluded rays get tfar = -inf.
+  // Any-hit test for rays[range]: occluded rays get tfar = -inf. Refused rays count as occluded.
   void occluded(RayQueue& rays, IndexRange range) const;
+  // Rays refused by intersect() and occluded() so far, over all threads.
+  uint64_t refusedRays() const;
 
   // The same, one ray at a time (rtcIntersect1 / rtcOccluded1): only for A/B benchmarks
   // against the stream calls, never in the render path.

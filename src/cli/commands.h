@@ -34,6 +34,7 @@ struct RenderArgs {
   double writePartial = 0;       // --write-partial SECONDS (0: off)
   std::string display;           // --display HOST:PORT (the tev viewer)
   std::vector<std::string> commandArgs;  // the render command's own arguments (kept in checkpoints)
+  std::vector<std::string> given;        // long names of the options given (option_scope.h)
   const Checkpoint* resumeFrom = nullptr;  // `erpt resume`
 };
 

@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.h"
+#include "option_scope.h"
 #include "erpt/error.h"
 #include "erpt/error_plots.h"
 #include "erpt/image_metrics.h"
@@ -72,6 +73,9 @@ IntegratorEntry parseEntry(const std::string& entry, const RenderArgs& common, c
     } catch (const CLI::ParseError& e) {
       throw UsageError("--integrators entry '" + entry + "': " + e.what());
     }
+    const std::vector<std::string> own = givenOptions(options);
+    checkOptionScope(own, {args.integrator});
+    args.given.insert(args.given.end(), own.begin(), own.end());
   }
   out.settings = resolveSettings(scene, settingsFromArgs(args, scene));
   return out;
@@ -177,6 +181,10 @@ int runCompare(const CompareArgs& a) {
       throw UsageError("--integrators entry '" + e + "' changes the image size; give --width/--height outside the brackets");
   }
   if (entries.empty()) throw UsageError("--integrators names no integrator");
+  // An option outside the brackets applies to every entry that uses it; it must fit one.
+  std::vector<std::string> raced;
+  for (const std::string& e : splitEntries(a.integrators)) raced.push_back(e.substr(0, e.find('[')));
+  checkOptionScope(a.render.given, raced);
   const RgbImage reference = matchReferenceSize(referenceFile, base.width, base.height);  // size errors before rendering
   std::error_code ec;
   fs::create_directories(a.outDir, ec);

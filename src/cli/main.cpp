@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.h"
+#include "option_scope.h"
 #include "erpt/error.h"
 #include "erpt/image_io.h"
 #include "process_group.h"
@@ -46,6 +47,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  renderArgs.given = erpt::cli::givenOptions(*app.get_subcommand("render"));
+  compareArgs.render.given = erpt::cli::givenOptions(*app.get_subcommand("compare"));
   // In an MPI job a rank that fails ends the job: the others would wait for it.
   auto fail = [&](int status) { return group.size() > 1 ? group.abortAll(status), status : status; };
   try {

@@ -16,6 +16,9 @@ void printPmcSummary(const RenderStats& stats) {
                (unsigned long long)p.trainingIterations, (unsigned long long)p.population,
                (unsigned long long)p.poolUsed, (unsigned long long)p.poolSize, (unsigned long long)p.candidates,
                (unsigned long long)p.inPlaceSeeds);
+  if (p.requestedPopulation > p.population)
+    std::fprintf(stderr, "pmc-er: note: --population %llu is more than the pool's %llu positions (pixels x spp); %llu members ran\n",
+                 (unsigned long long)p.requestedPopulation, (unsigned long long)p.population, (unsigned long long)p.population);
   std::fprintf(stderr,
                "pmc-er: e_ave %.4g, e_d (eq. 4) %.4g, mean deposit per step %.4g; resampling: %llu members born, "
                "%llu eliminated, %llu copies; energy regenerated %.4g, eliminated %.4g, left at the end %.4g\n",

@@ -8,6 +8,7 @@
 #include "erpt/error.h"
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
+#include "option_scope.h"
 #include "pass_writer.h"
 #include "process_group.h"
 #include "progress.h"
@@ -152,6 +153,7 @@ int runResume(const ResumeArgs& r) {
     throw InputError({path, 0}, std::string("checkpoint holds arguments this erpt does not take: ") + e.what());
   }
   a.commandArgs = checkpoint.args;
+  a.given = givenOptions(*app.get_subcommand("render"));
   a.checkpoint = given;  // runRender adds the rank in a split render
   a.resumeFrom = &checkpoint;
   if (r.threads >= 0) a.threads = r.threads;
@@ -219,6 +221,19 @@ RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
   s.film = a.film == "fis" ? FilmMode::Fis : a.film == "splat" ? FilmMode::Splat
           : a.film == "splat-unbiased" ? FilmMode::SplatUnbiased : FilmMode::Auto;
   s.timeBudget = a.time;
+  const auto given = [&](const char* option) { return std::find(a.given.begin(), a.given.end(), option) != a.given.end(); };
+  if (s.integrator == "mlt" && given("--spp")) {
+    // Mitsuba's MLT takes its sampler's sample count as the mutations per pixel.
+    if (given("--mutations-per-pixel"))
+      throw UsageError("for mlt --spp is the mutations per pixel (as Mitsuba's sample count): give --spp or --mutations-per-pixel, not both");
+    s.erpt.mutationsPerPixel = a.spp;
+  }
+  for (const char* option : {"--pmc-region", "--pmc-train-iterations"})
+    if (given(option) && s.pmc.adapt != PmcAdapt::Region)
+      throw UsageError(std::string(option) + " applies to pmc-er with --pmc-adapt region only");
+  if (given("--alpha-floor") && s.pmc.adapt == PmcAdapt::Off)
+    throw UsageError("--alpha-floor has no effect on pmc-er with --pmc-adapt off (the weights stay uniform)");
+  if (given("--checkpoint-every") && a.checkpoint.empty()) throw UsageError("--checkpoint-every needs --checkpoint FILE");
   if (!a.filter.empty()) {
     s.filterSet = true;
     s.filter = a.filter == "box" ? FilterKind::Box : a.filter == "tent" ? FilterKind::Tent : FilterKind::Gaussian;
@@ -242,6 +257,7 @@ int runRender(const RenderArgs& given) {
   if (!a.checkpoint.empty() && a.time > 0) throw UsageError("--checkpoint needs a fixed --spp, not --time");
   Scene scene = loadSceneFor(a);
   RenderSettings s = settingsFromArgs(a, scene);
+  checkOptionScope(a.given, {s.integrator});
   const bool longRender = !a.checkpoint.empty() || a.writePartial > 0 || a.resumeFrom || !a.display.empty();
   if (longRender && a.time > 0) throw UsageError("--write-partial and --display need a fixed --spp, not --time");
   const uint64_t fingerprint = longRender ? sceneFingerprint(scene) : 0;
@@ -300,6 +316,9 @@ int runRender(const RenderArgs& given) {
                (unsigned long long)stats.samples, stats.seconds,
                stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0,
                (unsigned long long)stats.invalidSamples, out.string().c_str(), png.string().c_str());
+  if (stats.refusedRays > 0)
+    std::fprintf(stderr, "%s: warning: %llu rays with a non-finite origin or direction were not traced (a bug: please report the scene)\n",
+                 s.integrator.c_str(), (unsigned long long)stats.refusedRays);
   if (s.integrator == "erpt") printErptSummary(stats);
   if (s.integrator == "pmc-er") printPmcSummary(stats);
   if (s.integrator == "mlt") printMltSummary(stats);

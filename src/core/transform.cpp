@@ -1,3 +1,5 @@
+#include <cfloat>
+
 #include "erpt/math.h"
 
 namespace erpt {
@@ -119,6 +121,29 @@ double Transform::determinant3x3() const {
   const Transform& t = *this;
   return t(0, 0) * (t(1, 1) * t(2, 2) - t(1, 2) * t(2, 1)) - t(0, 1) * (t(1, 0) * t(2, 2) - t(1, 2) * t(2, 0)) +
          t(0, 2) * (t(1, 0) * t(2, 1) - t(1, 1) * t(2, 0));
+}
+
+namespace {
+bool fitsInFloat(const Transform& t) {
+  for (double v : t.m)
+    if (!(std::abs(v) <= double(FLT_MAX))) return false;  // also false for NaN
+  return true;
+}
+}  // namespace
+
+std::string Transform::defect() const {
+  if (!fitsInFloat(*this)) return "has an entry that is infinite, NaN or beyond single-precision range (3.4e38)";
+  const Transform& t = *this;
+  if (t(3, 0) != 0 || t(3, 1) != 0 || t(3, 2) != 0 || t(3, 3) != 1)
+    return "is not affine (its bottom row must be 0 0 0 1)";
+  // The inverse's linear part maps normals and directions; its translation, used only for a
+  // rigid camera, may be large (a tiny scale far from the origin) without harm.
+  if (determinant3x3() != 0) {
+    Transform linear = t;
+    linear(0, 3) = linear(1, 3) = linear(2, 3) = 0;
+    if (!fitsInFloat(linear.inverse())) return "is nearly singular (its inverse is beyond single-precision range)";
+  }
+  return "";
 }
 
 }  // namespace erpt

@@ -80,7 +80,7 @@ bool ErptChains::consume(const SeedStore& batch) {
     if (!(e > 0) || !std::isfinite(e)) continue;
     ++stats_.seeds;
     // Drawn for every seed, so the chain numbering does not depend on which stay in place.
-    const float u = uniformFloat(streamKey(config_.seed, kSeedStream, seedCounter_++), 0);
+    const double u = uniformDouble(streamKey(config_.seed, kSeedStream, seedCounter_++), 0);
     // The signature alone says whether a chain can hold and move the seed (cheap, every seed):
     // if not, or with no deposition energy, the seed's own X_f goes where it is.
     const InPlaceReason bySignature = seedSignatureReason(config_.step, batch, i);

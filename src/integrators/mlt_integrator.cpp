@@ -142,7 +142,7 @@ struct Bootstrap {
 
 // Systematic resampling: `count` ordinals of `energies`, each chosen with probability
 // proportional to its energy (in ordinal order; an ordinal may repeat).
-std::vector<size_t> resample(const std::vector<float>& energies, double total, size_t count, float u) {
+std::vector<size_t> resample(const std::vector<float>& energies, double total, size_t count, double u) {
   std::vector<size_t> chosen;
   chosen.reserve(count);
   double running = 0;
@@ -269,7 +269,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   const size_t chains = boot.energies.empty() ? 0 : size_t(std::min<double>(s.mlt.chains, mutations));
   const uint32_t length = chains ? uint32_t(std::max(1.0, std::round(mutations / double(chains)))) : 0;
   const std::vector<size_t> chosen =
-      resample(boot.energies, boot.total, chains, uniformFloat(streamKey(s.seed, kResampleStream, 0), 0));
+      resample(boot.energies, boot.total, chains, uniformDouble(streamKey(s.seed, kResampleStream, 0), 0));
   SeedStore starts;
   if (chains > 0) {
     std::vector<uint64_t> again;  // the samples to trace again, ascending

@@ -108,6 +108,7 @@ void startPaths(PathWavefront& w, int cur, const PathSampleSet& samples, size_t 
     paths.radianceSet(id, Color(0.0f));
     paths.prevPdf[id] = 0;
     paths.pLength[id] = 1;
+    paths.etaSquared[id] = 1;
     paths.lastVertex[id] = -1;
     w.slots[cur].path[slot] = id;
     w.startPixel[slot] = paths.pixel[id];

@@ -1,8 +1,8 @@
 // `--integrator pmc-er`: population Monte Carlo energy redistribution (Lai, Fan, Chenney,
 // Dyer), made unbiased as docs/pmc-er.md derives.
 //
-//   1. Pilot pass (as ERPT's, own stream): E_total, for e_d of eq. 4 (reported; the flow
-//      rule itself deposits a fixed share of each member's energy per iteration).
+//   1. No pilot pass: E_total, for e_d of eq. 4 (reported only; the flow rule deposits a
+//      fixed share of each member's energy per iteration), is the pool's own seed energy.
 //   2. Region adaptation only: a training population (own stream, own pool, uniform weights,
 //      deposits nothing) learns the table of mixture weights per image region; the table is
 //      then frozen, so the main population's kernel is a fixed function of the path.
@@ -18,6 +18,7 @@
 #include "erpt/rng.h"
 #include "erpt/stratified_pool.h"
 #include "erpt_integrator.h"
+#include "erpt/system_memory.h"
 #include "pmc_population.h"
 #include "render_setup.h"
 #include "sample_passes.h"
@@ -76,9 +77,22 @@ void trainRegionTable(const Scene& scene, const RenderSettings& s, const ErptSte
 }
 }  // namespace
 
-RgbImage renderPmcEr(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+int usablePopulation(const RenderSettings& s, size_t availableBytes) {
+  const double pool = double(s.width) * double(s.height) * double(std::max(1, s.spp));
+  const int population = int(std::min(double(s.pmc.population), pool));
+  const double bytes = double(population) * double(PmcPopulation::bytesPerMember(int(s.pmc.radii.size())));
+  if (availableBytes > 0 && bytes > 0.8 * double(availableBytes))
+    throw UsageError("--population " + std::to_string(population) + " needs about " + humanBytes(bytes) +
+                     " for its members; this machine has " + humanBytes(double(availableBytes)) + " available");
+  return population;
+}
+
+RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
+  validatePmcSettings(requested.pmc, requested.erpt);
+  RenderSettings s = requested;
+  s.pmc.population = usablePopulation(requested, availableMemoryBytes());
+  stats.pmc.requestedPopulation = uint64_t(requested.pmc.population);
   const PmcSettings& p = s.pmc;
-  validatePmcSettings(p, s.erpt);
   ErptStats& es = stats.erpt;
   PmcStats& ps = stats.pmc;
 
@@ -95,11 +109,10 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& s, RenderStats& s
   const uint32_t pixels = uint32_t(s.width) * uint32_t(s.height);
   PmcMixture mixture(p, s.width, s.height);
   RgbImage direct;
-  // Pilot, training and the direct pass come before the passes (a resumed render has their
+  // Training and the direct pass come before the passes (a resumed render has their
   // results in its state). A split render runs them even when stopped: its ranks must make
   // the same collective calls.
   if (!s.resume && (!stopRequested(s.stop) || s.share.split())) {
-    es.pilotEnergy = s.erpt.knownPilotEnergy >= 0 ? s.erpt.knownPilotEnergy : erptPilotEnergy(scene, s, stats);
     if (p.adapt == PmcAdapt::Region) trainRegionTable(scene, s, ctx, mixture, stats);
     direct = renderDirectPass(scene, s, stats);
   }
@@ -135,6 +148,9 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& s, RenderStats& s
   passes.reduce = [&](const RenderShare& share) {
     setup.film.reduce(share.sumAcrossRanks);
     population.reduce(share.sumAcrossRanks);
+    std::vector<double> poolEnergy{ps.poolEnergy};
+    share.sumAcrossRanks(poolEnergy);
+    ps.poolEnergy = poolEnergy[0];
     sumCounters(share, {&stats.samples, &stats.rays, &stats.invalidSamples, &es.mutations, &es.deposits, &es.rays,
                         &ps.iterations, &ps.drainIterations, &ps.poolSize, &ps.poolUsed, &ps.candidates,
                         &ps.inPlaceSeeds, &ps.membersBorn, &ps.eliminated, &ps.split, &ps.steps});
@@ -146,6 +162,9 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& s, RenderStats& s
   passes.image = [&](int done) { return image(done, nullptr); };
   renderInSamplePasses(s, pixels, stats, passes);
   es.erptSeconds = ps.chainSeconds + ps.resampleSeconds;
+  // PMC-ER needs no pilot (its energies come from the pool); e_ave for the statistics is the
+  // pool's own mean seed energy, what ERPT's pilot pass estimates.
+  es.pilotEnergy = ps.poolUsed > 0 ? ps.poolEnergy / double(ps.poolUsed) : 0;
   // Eq. 4 with the steps the render took: what each would deposit if all were equal.
   const double steps = double(ps.steps);
   ps.depositEnergy = steps > 0 ? es.pilotEnergy * double(pixels) * double(stats.spp) / steps : 0;

@@ -9,4 +9,11 @@ namespace erpt {
 void validatePmcSettings(const PmcSettings& settings, const ErptSettings& erpt);
 RgbImage renderPmcEr(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
 
+// The population a render with these settings runs: at most one member per position of its
+// stratified pool (pixels x spp: the pool is the members' only source of paths, so further
+// slots would hold resampled copies of the same ones). Throws UsageError when those members
+// would need more than 80% of `availableBytes` (0: unknown, not checked), before anything is
+// allocated or traced.
+int usablePopulation(const RenderSettings& s, size_t availableBytes);
+
 }  // namespace erpt

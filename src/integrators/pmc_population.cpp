@@ -39,6 +39,14 @@ int drainIterations(double share) {
 }
 }  // namespace
 
+size_t PmcPopulation::bytesPerMember(int components) {
+  // The queues, the spare chain row and path for resampling, energy, alpha sums and weights;
+  // about as much again for the candidates' seed copies and the pool's path-tracer batch.
+  const size_t member = ErptQueues::bytesPerSlot() + sizeof(ChainQueue::Row) + kMaxChainVertices * sizeof(VertexQueue::Row) +
+                        sizeof(double) + size_t(components) * (sizeof(double) + sizeof(float));
+  return 2 * member;
+}
+
 PmcPopulation::PmcPopulation(const RenderSetup& tracing, const Config& config, PmcMixture& mixture, RenderStats& stats)
     : tracing_(tracing),
       config_(config),
@@ -180,6 +188,7 @@ void PmcPopulation::absorb(SeedStore& batch, const PoolRounds& rounds, size_t fi
     if (!seedForChains(batch, i, excludeDirect)) continue;
     const float e = luminance(batch.contribution(i));
     if (!(e > 0) || !std::isfinite(e)) continue;
+    pmc_.poolEnergy += e;
     if (seedSignatureReason(ctx, batch, i) != kInPlaceReasonCount) {
       ++pmc_.inPlaceSeeds;
       if (config_.film) deposited_ += depositSeedInPlace(ctx.measure.film, batch, i, e, *config_.film);
@@ -192,7 +201,7 @@ void PmcPopulation::absorb(SeedStore& batch, const PoolRounds& rounds, size_t fi
   for (size_t i = 0; i < batch.size(); ++i) {
     if (!(energy[i] > 0)) continue;
     const uint32_t p = batch.seeds.path[i];
-    const double u = double(uniformFloat(streamKey(config_.seed, kPickStream, rounds.index(first + p)), 0)) * total[p];
+    const double u = uniformDouble(streamKey(config_.seed, kPickStream, rounds.index(first + p)), 0) * total[p];
     cumulative[p] += energy[i];
     lastEligible[p] = int64_t(i);
     if (chosen[p] < 0 && cumulative[p] > u) chosen[p] = int64_t(i);
@@ -228,7 +237,7 @@ void PmcPopulation::resample(uint64_t iteration, size_t members) {
   weights.insert(weights.end(), candidateEnergy_.begin(), candidateEnergy_.end());
   double total = 0;
   for (double w : weights) total += w;
-  const double u = double(uniformFloat(streamKey(runSeed_, kCombStream, iteration), 0));
+  const double u = uniformDouble(streamKey(runSeed_, kCombStream, iteration), 0);
   const std::vector<uint32_t> counts = systematicCounts(weights, members, u);
   const double tau = total / double(members);
   std::vector<double> energy(n, 0.0), alphaSum(n * k, 0.0);

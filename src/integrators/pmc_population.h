@@ -34,6 +34,9 @@ class PmcPopulation {
     uint64_t seed = 0;     // chain streams, candidate choice and the resampling comb
     Film* film = nullptr;  // where deposits go; null: a training population (deposits nothing)
   };
+  // Memory one member slot takes (queues, spare copies, energies and mixture weights), for
+  // refusing populations that would not fit.
+  static size_t bytesPerMember(int components);
   // `tracing`: the path tracer's setup (its stage context keys and stratifies pool samples).
   PmcPopulation(const RenderSetup& tracing, const Config& config, PmcMixture& mixture, RenderStats& stats);
 

@@ -67,7 +67,9 @@ void addPmcStats(PmcStats& to, const PmcStats& from) {
   to.drainIterations += from.drainIterations;
   to.trainingIterations += from.trainingIterations;
   to.population = from.population;
+  to.requestedPopulation = from.requestedPopulation;
   to.poolSize += from.poolSize;
+  to.poolEnergy += from.poolEnergy;
   to.poolUsed += from.poolUsed;
   to.candidates += from.candidates;
   to.inPlaceSeeds += from.inPlaceSeeds;
@@ -122,7 +124,7 @@ struct WeightedSum {
 RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats& stats, Clock::time_point start) {
   if (!(s.timeBudget > 0) || s.timeBudget > 1e7) throw UsageError("--time must be in (0, 10000000] seconds");
   RenderSettings pass = subRenderSettings(s);
-  if (redistributes(s.integrator)) {
+  if (s.integrator == "erpt") {
     // One pilot for all passes (it is independent of every one of them), and e_d from the
     // configured spp, so each pass runs the configured mutations per seed.
     pass.erpt.knownPilotEnergy = erptPilotEnergy(scene, s, stats);
@@ -235,6 +237,7 @@ RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats
   if (s.share.split() && s.timeBudget != 0)
     throw UsageError("a render over several processes needs a fixed --spp, not --time");
   if ((s.resume || s.onPasses) && s.timeBudget != 0) throw UsageError("checkpoints need a fixed --spp, not --time");
+  const uint64_t refusedBefore = s.tracer->refusedRays();
   RgbImage image;
   if (s.timeBudget != 0) {
     image = renderForTime(scene, s, stats, start);
@@ -242,6 +245,7 @@ RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats
     image = renderOnce(scene, s, stats);  // stats.spp: the passes it completed
     stats.passes = 1;
   }
+  stats.refusedRays = s.tracer->refusedRays() - refusedBefore;
   stats.seconds = secondsSince(start);
   return image;
 }

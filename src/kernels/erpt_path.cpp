@@ -67,10 +67,10 @@ uint64_t packSignature(const uint8_t* kinds, int n) {
   return s;
 }
 
-uint32_t chainsForSeed(double energy, double chainLength, double depositEnergy, float u) {
+uint32_t chainsForSeed(double energy, double chainLength, double depositEnergy, double u) {
   const double expected = energy / (chainLength * depositEnergy);
   if (!(expected >= 0)) return 0;
-  return uint32_t(std::min(double(UINT32_MAX), std::floor(double(u) + expected)));
+  return uint32_t(std::min(double(UINT32_MAX), std::floor(u + expected)));
 }
 
 Vec3 perturbDirection(Vec3 d, float u1, float u2) {

@@ -5,7 +5,7 @@
 namespace erpt {
 
 bool connectToLight(const LightSampler& lights, const SurfacePoint& sp, const Material& m, const SurfaceColors& colors,
-                    Vec3 wiLocal, float uPick, float u1, float u2, LightConnection& out) {
+                    Vec3 wiLocal, double uPick, float u1, float u2, LightConnection& out) {
   if (m.isPureSpecular()) return false;  // eval() would be 0 for every light direction
   LightSample ls;
   if (!lights.sample(sp.position, uPick, u1, u2, ls)) return false;

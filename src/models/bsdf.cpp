@@ -307,6 +307,18 @@ bool sampleBlend(const Material& m, const SurfaceColors& c, Vec3 wi, float u1, f
 
 }  // namespace
 
+float bsdfEta(const Material& m, Vec3 wi, Vec3 wo) {
+  if (wi.z * wo.z >= 0) return 1.0f;  // reflection
+  if (m.kind == BsdfKind::Dielectric || m.kind == BsdfKind::RoughDielectric)
+    return wi.z > 0 ? m.relativeIOR() : 1.0f / m.relativeIOR();
+  // A blend refracts through its dielectric part (the first, if both are: a blend of two
+  // different glasses is the one case where a sample's eta depends on the part it took).
+  if (m.kind == BsdfKind::Blend)
+    for (const Material& part : m.blendParts)
+      if (part.kind == BsdfKind::Dielectric || part.kind == BsdfKind::RoughDielectric) return bsdfEta(part, wi, wo);
+  return 1.0f;  // thin dielectrics and every reflective material
+}
+
 Color bsdfEval(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
   if (m.kind == BsdfKind::Blend)
     return bsdfEval(m.blendParts[0], c.part(0), wi, wo) * partWeight(c, 0) +

@@ -210,7 +210,7 @@ bool LightSampler::sampleSphere(const Item& item, float prob, Vec3 ref, float u1
   return true;
 }
 
-bool LightSampler::sample(Vec3 ref, float uPick, float u1, float u2, LightSample& out) const {
+bool LightSampler::sample(Vec3 ref, double uPick, float u1, float u2, LightSample& out) const {
   if (cdf_.empty()) return false;
   size_t i = std::min(size_t(std::upper_bound(cdf_.begin(), cdf_.end(), uPick) - cdf_.begin()), cdf_.size() - 1);
   const Item& item = items_[i];

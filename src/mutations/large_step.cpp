@@ -1,13 +1,14 @@
 // MLT's large step: the path tracer's density of a given path (large_step.h, docs/mlt.md).
 // The terms follow the path tracer's sampling decisions vertex by vertex (stages.h:
 // stageShadePath, connectToLight): BSDF sampling with its lobe choice, Russian roulette from
-// depth rrDepth on (survival min(0.95, max component of the throughput)), and the light
+// depth rrDepth on (survival min(0.95, max component of the throughput times eta^2)), and the light
 // sampler's density for the next-event connection.
 #include "erpt/large_step.h"
 
 #include <algorithm>
 #include <cmath>
 
+#include "erpt/bsdf.h"
 #include "path_factors.h"
 
 namespace erpt {
@@ -44,10 +45,10 @@ float neeDensity(const MeasureContext& c, const PathVertex& from, const PathVert
   return 0.0f;
 }
 
-// The path tracer's Russian roulette at depth `depth` with throughput `next` after the bounce:
-// the survival probability (1 before rrDepth).
-float survival(int depth, int rrDepth, const Color& next) {
-  return depth >= rrDepth ? std::min(0.95f, maxComponent(next)) : 1.0f;
+// The path tracer's Russian roulette at depth `depth` with throughput `next` after the bounce
+// and the squared IORs crossed up to it: the survival probability (1 before rrDepth).
+float survival(int depth, int rrDepth, const Color& next, float etaSquared) {
+  return depth >= rrDepth ? russianRouletteSurvival(next, etaSquared) : 1.0f;
 }
 
 }  // namespace
@@ -65,6 +66,7 @@ bool largeStepTerms(const MeasureContext& c, int rrDepth, const PathVertex* path
     return !isBlack(emitted);
   }
   Color throughput(1.0f);
+  float etaSquared = 1;
   for (int j = 1; j <= n - 2; ++j) {
     const PathVertex& v = path[j];
     const Vec3 wi = directionBetween(v, path[j - 1]), wo = directionBetween(v, path[j + 1]);
@@ -78,18 +80,20 @@ bool largeStepTerms(const MeasureContext& c, int rrDepth, const PathVertex* path
       pdf = factors::pdfAt(c, v, wi, wo);
     }
     if (isBlack(f)) return false;
+    const float eta = factors::etaAt(c, v, wi, wo);
+    etaSquared *= eta * eta;
     if (j < n - 2) {
       // Depth j: the BSDF sampled the direction to vertex j + 1, then the roulette let it go on.
       if (!(pdf > 0)) return false;
       const Color next = throughput * f / pdf;
-      throughput = next / survival(j, rrDepth, next);
+      throughput = next / survival(j, rrDepth, next, etaSquared);
       continue;
     }
     // The last surface vertex: f, the light's emission and the last segment's area factor.
     const float area = factors::areaFactor(c, v, light);
     out.value = throughput * f * emitted * area;
     const bool deltaLight = factors::isPointLight(c, light);
-    if (pdf > 0 && !deltaLight) out.pHit = pdf * area * survival(j, rrDepth, throughput * f / pdf);
+    if (pdf > 0 && !deltaLight) out.pHit = pdf * area * survival(j, rrDepth, throughput * f / pdf, etaSquared);
     if (!specular) out.pNee = neeDensity(c, v, light);
   }
   return !isBlack(out.value) && (out.pHit > 0 || out.pNee > 0);

@@ -37,6 +37,12 @@ float pdfAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo) {
   return bsdfPdf(b.material, b.colors, b.frame.toLocal(wi), b.frame.toLocal(wo));
 }
 
+float etaAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo) {
+  if (v.material < 0) return 1.0f;
+  LocalBsdf b = bsdfAt(c, v);
+  return bsdfEta(b.material, b.frame.toLocal(wi), b.frame.toLocal(wo));
+}
+
 bool specularLobeAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo, Color& value, float& probability) {
   if (v.material < 0) return false;
   LocalBsdf b = bsdfAt(c, v);

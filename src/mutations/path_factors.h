@@ -18,6 +18,8 @@ float pdfAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo);
 // At a specular vertex: the Dirac lobe's value (radiance transport) and the probability that
 // BSDF sampling picks that lobe; false off every lobe.
 bool specularLobeAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo, Color& value, float& probability);
+// The relative IOR crossed from wi to wo at v (bsdfEta): what the path tracer's roulette saw.
+float etaAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo);
 // Radiance (area light, environment) or intensity (point light) a light vertex sends along w.
 Color emittedAlong(const MeasureContext& c, const PathVertex& light, Vec3 w);
 bool isPointLight(const MeasureContext& c, const PathVertex& v);

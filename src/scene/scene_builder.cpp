@@ -205,6 +205,12 @@ Transform SceneBuilder::readTransform(const Document& doc, const pugi::xml_node&
       } else {
         throw InputError(where, "<matrix> needs 16 (or 9) numbers, got " + std::to_string(v.size()));
       }
+      // A bottom row (0 0 0 w) is the affine map scaled by w in homogeneous coordinates: divide
+      // it out. Any other bottom row is a projective map, which no to_world can be.
+      const double w = t(3, 3);
+      if (t(3, 0) != 0 || t(3, 1) != 0 || t(3, 2) != 0 || w == 0)
+        throw InputError(where, "<matrix> is projective (bottom row must be 0 0 0 w with w != 0)");
+      for (double& e : t.m) e /= w;
     } else if (tag == "lookat" || tag == "lookAt") {
       Vec3 origin = vec("origin"), target = vec("target");
       Vec3 dir = target - origin;
@@ -218,7 +224,11 @@ Transform SceneBuilder::readTransform(const Document& doc, const pugi::xml_node&
     } else {
       throw InputError(where, "unknown transform operation <" + tag + ">");
     }
+    std::string defect = t.defect();
+    if (!defect.empty()) throw InputError(where, "<" + tag + "> " + defect);
     result = t * result;  // document order: each operation applies after the previous ones
+    defect = result.defect();
+    if (!defect.empty()) throw InputError(where, "the transform up to this <" + tag + "> " + defect);
   }
   return result;
 }

@@ -30,6 +30,16 @@ void SceneBuilder::sensor(const Document& doc, const pugi::xml_node& node) {
   cam.toWorld = props.getTransform("to_world");
   if (std::abs(cam.toWorld.determinant3x3()) < 1e-12)
     throw InputError(props.find("to_world")->where, "the sensor's to_world transform is singular");
+  // Rotations, reflections and translations only, as in Mitsuba 0.6 and 3: a scaled camera
+  // frame has no meaning for a pinhole or a lens, and a large scale would overflow the
+  // single-precision ray directions.
+  for (int c = 0; c < 3; ++c) {
+    const double len = std::sqrt(cam.toWorld(0, c) * cam.toWorld(0, c) + cam.toWorld(1, c) * cam.toWorld(1, c) +
+                                 cam.toWorld(2, c) * cam.toWorld(2, c));
+    if (std::abs(len - 1) > 1e-3)
+      throw InputError(props.find("to_world")->where, "the sensor's to_world has a scale factor (" + std::to_string(len) +
+                                                          "); a camera transform may only rotate, mirror and translate");
+  }
   std::string axis = props.getString("fov_axis", "x");
   if (!props.find("fov") && props.find("focal_length")) {
     // Mitsuba's 35 mm film equivalent: the diagonal field of view of a 36 x 24 mm frame.

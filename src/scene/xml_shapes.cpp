@@ -7,6 +7,16 @@
 
 namespace erpt::xml {
 
+// An instance's or shape's to_world after the transforms of the instances around it; each
+// factor was checked when it was read, the product is checked here.
+Transform SceneBuilder::composedToWorld(const Properties& props, const Transform* parent, const SourceLocation& where) {
+  if (!parent) return props.getTransform("to_world");
+  const Transform toWorld = *parent * props.getTransform("to_world");
+  const std::string defect = toWorld.defect();
+  if (!defect.empty()) throw InputError(where, "to_world composed with the enclosing instances' transforms " + defect);
+  return toWorld;
+}
+
 void SceneBuilder::instance(const Document& doc, const pugi::xml_node& node, Properties& props, const Transform* parent,
                             int depth) {
   const SourceLocation where = doc.where(node);
@@ -23,9 +33,8 @@ void SceneBuilder::instance(const Document& doc, const pugi::xml_node& node, Pro
   const auto group = shapeGroups_.find(id);
   if (group == shapeGroups_.end()) throw InputError(doc.where(ref), "no shapegroup with id '" + id + "' before this instance");
   if (depth >= 8) throw InputError(where, "instances nested more than 8 deep (a shapegroup instancing itself?)");
-  const Transform toWorld = parent ? *parent * props.getTransform("to_world") : props.getTransform("to_world");
+  const Transform toWorld = composedToWorld(props, parent, where);
   props.warnUnused(scene_.warnings);
-  if (!toWorld.isFinite()) throw InputError(where, "instance to_world is not finite");
   const double det = toWorld.determinant3x3();
   if (!(std::abs(det) > 0)) {
     scene_.warnings.add(where, "instance to_world is singular (a zero scale); the instance is skipped");
@@ -39,6 +48,12 @@ void SceneBuilder::instance(const Document& doc, const pugi::xml_node& node, Pro
   if (plan == groupPlans_.end()) plan = groupPlans_.emplace(id, planGroup(doc, group->second, depth)).first;
   if (plan->second.group >= 0) {
     InstanceSet& in = scene_.instances;
+    // Embree places the shared prototypes by this transform while tracing: their world-space
+    // corners must be finite floats, as every copied vertex is (appendMesh).
+    const Vec3 lo = in.groupLower[size_t(plan->second.group)], hi = in.groupUpper[size_t(plan->second.group)];
+    for (int corner = 0; corner < 8; ++corner)
+      if (!isFinite(toWorld.point(Vec3(corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z))))
+        throw InputError(where, "instance to_world places the shapegroup '" + id + "' beyond single-precision range");
     in.group.push_back(uint32_t(plan->second.group));
     in.firstPrimitive.push_back(0);  // numbered when the scene has loaded
     in.toWorld.push_back(toWorld);
@@ -180,7 +195,7 @@ bool SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const 
   TriangleSoup& soup = group >= 0 ? scene_.instances.prototypes : scene_.mesh;
   info.firstTriangle = uint32_t(soup.triangleCount());
   scene_.shapes.push_back(info);
-  const Transform toWorld = parent ? *parent * props.getTransform("to_world") : props.getTransform("to_world");
+  const Transform toWorld = composedToWorld(props, parent, where);
   const bool flip = props.getBool("flip_normals", false);
   if (exactSphere && !appendSphere(sphereCenter, sphereRadius, toWorld, flip, material, shapeIndex)) {
     scene_.warnings.add(where, "to_world scales the sphere unevenly; it is tessellated (an ellipsoid)");

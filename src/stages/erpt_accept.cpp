@@ -117,7 +117,8 @@ void stageErptAccept(const ErptStepContext& ctx, ChainQueue& chains, VertexQueue
       }
     }
     proposals.acceptance[i] = q;
-    const bool accept = uniformFloat(chains.key[i], stepDim(chains.step[i], kDimAccept)) < q;
+    // 53 bits: with a 24-bit coin every q below 2^-24 would be accepted with probability 2^-24.
+    const bool accept = uniformDouble(chains.key[i], stepDim(chains.step[i], kDimAccept)) < q;
     if (q > 0 && !accept) proposals.reason[i] = kRejectByChance;
     ++proposed[size_t(kind)];
     if (accept)

@@ -22,6 +22,11 @@ ErptQueues::ErptQueues(size_t capacity) {
   for (size_t i = 0; i < capacity; ++i) chains.stepsLeft[i] = 0;
 }
 
+size_t ErptQueues::bytesPerSlot() {
+  return sizeof(ChainQueue::Row) + sizeof(ProposalQueue::Row) + 2 * kMaxChainVertices * sizeof(VertexQueue::Row) +
+         3 * sizeof(RayQueue::Row) + 2 * sizeof(HitQueue::Row) + sizeof(uint32_t) + kDepositsPerStep * sizeof(DepositQueue::Row);
+}
+
 bool pathHasZeroContribution(const ErptStepContext& ctx, const PathVertex* path, int n, float filmX, float filmY) {
   uint8_t kinds[kMaxChainVertices];
   for (int j = 0; j < n; ++j) kinds[j] = path[j].kind;

@@ -59,6 +59,10 @@ size_t stageErptTrace(const ErptStepContext& ctx, const ChainQueue& chains, cons
     const bool tracesToLight = last && connectTo < 0;
 
     PathVertex z;
+    if (hits.geomID[k] == kRefusedRay) {  // T = 0: a proposal we cannot trace is rejected
+      rejectProposal(proposals, rays, i, kRejectMissed, k);
+      continue;
+    }
     if (hits.geomID[k] == kNoHit) {
       if (!tracesToLight || expected.kind != kEnvironmentVertex) {
         rejectProposal(proposals, rays, i, kRejectMissed, k);

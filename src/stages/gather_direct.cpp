@@ -1,3 +1,5 @@
+#include <limits>
+
 #include "erpt/stages.h"
 #include "erpt/surface.h"
 #include "erpt/tracer.h"
@@ -16,7 +18,9 @@ void stageGatherDirect(const StageContext& ctx, const RayQueue& shadowRays, cons
     if (!isBlack(weight)) {
       Vec3 dir = bsdfRays.dirAt(i);
       float pdf = q.bsdfPdf[i];  // 0: a Dirac lobe, which next-event estimation cannot produce
-      if (bsdfHits.geomID[i] == kNoHit) {
+      if (bsdfHits.geomID[i] == kRefusedRay) {  // the sample is invalid: the film drops and counts it
+        total = Color(std::numeric_limits<float>::quiet_NaN());
+      } else if (bsdfHits.geomID[i] == kNoHit) {
         if (env) total += weight * env->environmentRadiance(dir) * emitterHitWeight(pdf, ctx.lights.pdfEnvironment(dir));
       } else {
         SurfacePoint lp = surfaceAt(ctx.scene, bsdfHits.primID[i], bsdfHits.u[i], bsdfHits.v[i]);

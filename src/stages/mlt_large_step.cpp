@@ -18,7 +18,7 @@ class MltChooser final : public MutationChooser {
     erptChooser().choose(ctx, chains, proposals, rays, range);
     const float p = ctx.largeSteps->probability;
     for (size_t i = range.begin; i < range.end; ++i) {
-      if (chains.stepsLeft[i] == 0 || !(uniformFloat(chains.key[i], stepDim(chains.step[i], kDimLargeStep)) < p))
+      if (chains.stepsLeft[i] == 0 || !(uniformDouble(chains.key[i], stepDim(chains.step[i], kDimLargeStep)) < p))
         continue;
       proposals.mutation[i] = uint8_t(MutationKind::LargeStep);
       proposals.state[i] = kProposalLarge;
@@ -29,8 +29,8 @@ class MltChooser final : public MutationChooser {
 };
 
 // n with probability P(n) for u uniform in [0, 1).
-int drawLength(const LargeStepModel& m, float u) {
-  float sum = 0;
+int drawLength(const LargeStepModel& m, double u) {
+  double sum = 0;
   for (int n = m.minVertices; n < m.maxVertices; ++n)
     if (u < (sum += m.lengthProbability[n])) return n;
   return m.maxVertices;
@@ -60,7 +60,7 @@ float mltDomainWeight(const ErptStepContext& ctx, const PathVertex* path, int n,
 void largeStepSample(const ChainQueue& chains, size_t slot, uint32_t pixels, uint32_t& pixel, uint32_t& sample) {
   const uint64_t key = chains.key[slot];
   const uint32_t step = chains.step[slot];
-  pixel = std::min(pixels - 1, uint32_t(uniformFloat(key, stepDim(step, kDimStart1)) * float(pixels)));
+  pixel = uint32_t(uniformIndex(key, stepDim(step, kDimStart1), pixels));  // exactly 1 / pixels each (W assumes it)
   // 32 bits of the chain's key and step: two large steps that draw the same pixel share a
   // sample stream only if these collide too (about once in 4e9 pairs).
   sample = uniformUint(key, stepDim(step, kDimLargeStep + 1));
@@ -69,8 +69,8 @@ void largeStepSample(const ChainQueue& chains, size_t slot, uint32_t pixels, uin
 void largeStepTarget(const LargeStepModel& m, const ChainQueue& chains, size_t slot, int& vertices, bool& nee) {
   const uint64_t key = chains.key[slot];
   const uint32_t step = chains.step[slot];
-  vertices = drawLength(m, uniformFloat(key, stepDim(step, kDimStart2)));
-  nee = uniformFloat(key, stepDim(step, kDimPerturb)) < m.neeProbability(vertices);
+  vertices = drawLength(m, uniformDouble(key, stepDim(step, kDimStart2)));
+  nee = uniformDouble(key, stepDim(step, kDimPerturb)) < m.neeProbability(vertices);
 }
 
 void stageMltLargeSteps(const ErptStepContext& ctx, const ChainQueue& chains, const SeedStore& samples,

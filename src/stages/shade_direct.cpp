@@ -1,3 +1,5 @@
+#include <limits>
+
 #include "erpt/bsdf.h"
 #include "erpt/rng.h"
 #include "erpt/stages.h"
@@ -23,7 +25,9 @@ void stageShadeDirect(const StageContext& ctx, const RayQueue& cameraRays, const
     disableRay(shadowRays, i);
     disableRay(bsdfRays, i);
     Vec3 dir = cameraRays.dirAt(i);
-    if (hits.geomID[i] == kNoHit) {
+    if (hits.geomID[i] == kRefusedRay) {  // the sample is invalid: the film drops and counts it
+      radiance = Color(std::numeric_limits<float>::quiet_NaN());
+    } else if (hits.geomID[i] == kNoHit) {
       if (env) radiance = env->environmentRadiance(dir);
     } else {
       SurfacePoint sp = surfaceAt(ctx.scene, hits.primID[i], hits.u[i], hits.v[i]);
@@ -37,7 +41,7 @@ void stageShadeDirect(const StageContext& ctx, const RayQueue& cameraRays, const
 
         // Next-event estimation, MIS-weighted against BSDF sampling.
         LightConnection lc;
-        if (connectToLight(ctx.lights, sp, m, colors, wi, uniformFloat(key, bounceDim(1, kLightPick)),
+        if (connectToLight(ctx.lights, sp, m, colors, wi, uniformDouble(key, bounceDim(1, kLightPick)),
                            uniformFloat(key, bounceDim(1, kLight1)), uniformFloat(key, bounceDim(1, kLight2)), lc)) {
           shadow = lc.contribution;
           setRay(shadowRays, i, lc.origin, lc.direction, 0.0f, lc.tfar);

@@ -1,5 +1,7 @@
 // Path tracer surface stage: emission (MIS-weighted), next-event estimation, BSDF sampling
 // and Russian roulette for every live slot.
+#include <limits>
+
 #include "erpt/erpt_path.h"
 #include "erpt/rng.h"
 #include "erpt/stages.h"
@@ -36,6 +38,10 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     const Vec3 prev = paths.prevAt(id);
     const float prevPdf = paths.prevPdf[id];
 
+    if (hits.geomID[k] == kRefusedRay) {  // the sample is invalid: the film drops and counts it
+      paths.radianceSet(id, Color(std::numeric_limits<float>::quiet_NaN()));
+      continue;
+    }
     if (hits.geomID[k] == kNoHit) {
       if (!env) continue;
       const Color le = env->environmentRadiance(dir);
@@ -89,7 +95,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     const Vec3 wi = sp.shading.toLocal(-dir);
 
     LightConnection lc;
-    if (connectToLight(ctx.lights, sp, m, colors, wi, uniformFloat(key, bounceDim(depth, kLightPick)),
+    if (connectToLight(ctx.lights, sp, m, colors, wi, uniformDouble(key, bounceDim(depth, kLightPick)),
                        uniformFloat(key, bounceDim(depth, kLight1)), uniformFloat(key, bounceDim(depth, kLight2)), lc)) {
       slots.neeSet(k, throughput * lc.contribution);
       setRay(shadowRays, k, lc.origin, lc.direction, 0.0f, lc.tfar);
@@ -114,10 +120,11 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
       history.vertices->pdfForward[vertex] = bs.pdf;  // for a Dirac lobe: its probability p_s
       history.vertices->kind[vertex] = bs.delta ? kSpecularVertex : kNonSpecularVertex;
     }
+    paths.etaSquared[id] *= bs.eta * bs.eta;
     if (int(depth) >= ctx.rrDepth) {
       // Russian roulette: survive with probability q, reweight by 1/q (unbiased).
-      float q = std::min(0.95f, maxComponent(next));
-      if (!(uniformFloat(key, bounceDim(depth, kRoulette)) < q)) continue;
+      const float q = russianRouletteSurvival(next, paths.etaSquared[id]);
+      if (!(uniformDouble(key, bounceDim(depth, kRoulette)) < q)) continue;
       next = next / q;
       paths.pLength[id] *= q;
     }

@@ -1,12 +1,15 @@
 // The only file that includes Embree.
 #include <embree3/rtcore.h>
 
+#include <atomic>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
 #include "erpt/surface.h"
 #include "erpt/tracer.h"
+#include "untraceable_rays.h"
 
 namespace erpt {
 
@@ -22,6 +25,7 @@ struct Tracer::Impl {
   std::vector<RTCScene> groupScenes;  // one per instanced shapegroup
   std::vector<float> prototypeVertices;  // shared by the groups' geometries (x, y, z, pad)
   const SphereSet* spheres = nullptr;
+  mutable std::atomic<uint64_t> refused{0};  // rays refused so far (untraceable_rays.h)
   unsigned sphereGeometry = RTC_INVALID_GEOMETRY_ID;
   unsigned firstSpherePrimitive = 0;
   const InstanceSet* instances = nullptr;
@@ -199,6 +203,9 @@ RTCIntersectContext makeContext(RayCoherence coherence) {
 
 void Tracer::intersect(RayQueue& rays, HitQueue& hits, IndexRange range, RayCoherence coherence) const {
   if (range.size() == 0) return;
+  thread_local std::vector<uint32_t> refused;
+  refused.clear();
+  impl_->refused += refuseUntraceableRays(rays, range, refused);
   size_t b = range.begin;
   for (size_t i = b; i < range.end; ++i) hits.geomID[i] = hits.instID[i] = RTC_INVALID_GEOMETRY_ID;
   RTCRayHitNp rh;
@@ -214,14 +221,22 @@ void Tracer::intersect(RayQueue& rays, HitQueue& hits, IndexRange range, RayCohe
   RTCIntersectContext ctx = makeContext(coherence);
   rtcIntersectNp(impl_->scene, &ctx, &rh, unsigned(range.size()));
   impl_->toScenePrimitives(rays, hits, range);
+  for (uint32_t i : refused) hits.geomID[i] = kRefusedRay;
 }
 
 void Tracer::occluded(RayQueue& rays, IndexRange range) const {
   if (range.size() == 0) return;
+  thread_local std::vector<uint32_t> refused;
+  refused.clear();
+  impl_->refused += refuseUntraceableRays(rays, range, refused);
   RTCRayNp r = rayColumns(rays, range.begin);
   RTCIntersectContext ctx = makeContext(RayCoherence::Incoherent);
   rtcOccludedNp(impl_->scene, &ctx, &r, unsigned(range.size()));
+  // A refused shadow ray is reported occluded: its connection contributes nothing.
+  for (uint32_t i : refused) rays.tfar[i] = -std::numeric_limits<float>::infinity();
 }
+
+uint64_t Tracer::refusedRays() const { return impl_->refused.load(); }
 
 namespace {
 RTCRay scalarRay(const RayQueue& q, size_t i) {

@@ -76,6 +76,7 @@ RgbImage scalarPathTrace(const Scene& scene, int width, int height, int spp, int
         Vec3 org = cr.origin, dir = cr.direction;
         float tnear = cr.tnear;
         Color throughput(1.0f), radiance(0.0f);
+        float etaSquared = 1;
         for (int depth = 1;; ++depth) {
           RTCIntersectContext ctx;
           rtcInitIntersectContext(&ctx);
@@ -113,8 +114,9 @@ RgbImage scalarPathTrace(const Scene& scene, int width, int height, int spp, int
                           uni(rng), bs))
             break;
           throughput *= bs.weight;
-          if (depth >= 5) {  // roulette on the largest throughput component
-            float q = std::min(0.95f, maxComponent(throughput));
+          etaSquared *= bs.eta * bs.eta;
+          if (depth >= 5) {  // roulette on the largest throughput component, boosted by eta^2 as Mitsuba's
+            float q = std::min(0.95f, maxComponent(throughput) * etaSquared);
             if (uni(rng) >= q) break;
             throughput = throughput / q;
           }
