@@ -403,7 +403,7 @@ TEST_F(MeshReadersTest, SerializedIndexOutOfRange) {
   shape.indices = {0, 1, 4};
   std::string path = write("range.serialized", serializeFile({shape}, 4));
   expectInputError([&] { readSerialized(path, 0, warnings_); }, path,
-                   "vertex index 4 out of range");
+                   "vertex index 4 of triangle 0 out of range");
 }
 
 TEST_F(MeshReadersTest, SerializedBadMagicAndVersion) {
