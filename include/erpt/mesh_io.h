@@ -1,7 +1,8 @@
 // Readers for mesh files and generators for Mitsuba's built-in shapes. They return meshes in
 // object space; the scene loader transforms them, validates them and appends them to the
-// scene's triangle soup. Readers throw InputError naming the mesh file (and line, for text
-// formats) on malformed input.
+// scene's triangle soup. Readers throw InputError on malformed input: at the line for text
+// (OBJ, PLY headers and ascii bodies), at line 0 with a byte offset or triangle for binary
+// data, which the scene loader then reports at the XML line naming the file.
 #pragma once
 
 #include <cstdint>

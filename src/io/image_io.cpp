@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "erpt/error.h"
+#include "erpt/file_util.h"
 #include "image_formats.h"
 
 namespace erpt {
@@ -60,6 +61,7 @@ void removePendingImageFiles() {
 }
 
 RgbImage readImage(const std::string& path, bool* isSrgbEncoded) {
+  requireReadableFile(path, "image");
   RgbImage img;
   bool srgb = false;
   std::string error;
@@ -67,7 +69,8 @@ RgbImage readImage(const std::string& path, bool* isSrgbEncoded) {
   const bool ok = ext == ".exr"   ? image_formats::readExr(path, img, error)
                   : ext == ".png" ? image_formats::readPng(path, img, srgb, error)
                                   : image_formats::readWithOiio(path, img, srgb, error);
-  if (!ok) throw InputError({path, 0}, "cannot read image: " + error);
+  // The libraries' messages can run over several lines; the first says what went wrong.
+  if (!ok) throw InputError({path, 0}, "cannot read image: " + error.substr(0, error.find_first_of("\r\n")));
   if (img.width <= 0 || img.height <= 0) throw InputError({path, 0}, "image has no pixels");
   if (isSrgbEncoded) *isSrgbEncoded = srgb;
   return img;

@@ -1,50 +1,51 @@
 // OBJ files through tinyobjloader. OBJ indexes positions, normals and uvs separately, so
 // every distinct (position, normal, uv) triple becomes one output vertex.
 #include <cmath>
-#include <fstream>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include <tiny_obj_loader.h>
 
+#include "erpt/file_util.h"
 #include "erpt/mesh_io.h"
+#include "obj_statements.h"
 
 namespace erpt {
 
 namespace {
-// tinyobjloader reports problems as "... line N ..." text; keep its first line only.
+// tinyobjloader's warnings can run over several lines; the first says what it is.
 std::string firstLine(const std::string& s) {
   auto end = s.find('\n');
   return end == std::string::npos ? s : s.substr(0, end);
 }
 
-// Line number of the OBJ statement defining vertex `index` (0-based), for error messages.
-int lineOfVertex(const std::string& path, size_t index) {
-  std::ifstream in(path);
-  std::string text;
-  size_t seen = 0;
-  for (int line = 1; std::getline(in, text); ++line) {
-    size_t i = text.find_first_not_of(" \t");
-    if (i != std::string::npos && text.compare(i, 2, "v ") == 0 && seen++ == index) return line;
-  }
-  return 0;
+// A face refers to something the file does not define: the statement that does, at its line.
+[[noreturn]] void throwBadFaceReference(const std::string& path, const std::string& cause) {
+  if (std::optional<InputError> found = obj::badFaceReference(path)) throw *found;
+  throw InputError({path, 0}, cause);  // not found again: the scene loader names the file
 }
 }  // namespace
 
 MeshData readObj(const std::string& path, bool flipV, Warnings& warnings) {
-  if (!std::ifstream(path)) throw InputError({path, 0}, "cannot open mesh file");
+  requireReadableFile(path, "mesh file");
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
   tinyobj::ObjReader reader;
   if (!reader.ParseFromFile(path, config))
-    throw InputError({path, 0}, "malformed OBJ file: " + firstLine(reader.Error()));
-  if (!reader.Warning().empty()) warnings.add({path, 0}, firstLine(reader.Warning()));
+    throw obj::parseFailure(path, reader.Error());
+  // tinyobjloader drops a polygon of four or more corners with a vertex index out of range,
+  // with only a warning; a triangle like it is an error below, and so is the polygon.
+  const std::string& warning = reader.Warning();
+  if (warning.find("out of bounds") != std::string::npos || warning.find("invalid vertex index") != std::string::npos)
+    if (std::optional<InputError> found = obj::badFaceReference(path)) throw *found;
+  if (!warning.empty()) warnings.add({path, 0}, firstLine(warning));
 
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   for (size_t i = 0; i < attrib.vertices.size(); ++i)
     if (!std::isfinite(attrib.vertices[i]))
-      throw InputError({path, lineOfVertex(path, i / 3)}, "non-finite vertex position");
+      throw InputError({path, obj::lineOfVertex(path, i / 3)}, "non-finite vertex position");
   MeshData mesh;
   std::map<std::tuple<int, int, int>, uint32_t> remap;
   bool anyNormals = !attrib.normals.empty(), anyUvs = !attrib.texcoords.empty();
@@ -57,12 +58,12 @@ MeshData readObj(const std::string& path, bool flipV, Warnings& warnings) {
         continue;
       }
       if (idx.vertex_index < 0 || size_t(idx.vertex_index) * 3 + 2 >= attrib.vertices.size())
-        throw InputError({path, 0}, "face refers to a vertex that does not exist");
+        throwBadFaceReference(path, "face refers to a vertex that does not exist");
       // (tinyobjloader leaves normal and uv indices unchecked; found by tests/fuzz.)
       if (idx.normal_index >= 0 && size_t(idx.normal_index) * 3 + 2 >= attrib.normals.size())
-        throw InputError({path, 0}, "face refers to a normal that does not exist");
+        throwBadFaceReference(path, "face refers to a normal that does not exist");
       if (idx.texcoord_index >= 0 && size_t(idx.texcoord_index) * 2 + 1 >= attrib.texcoords.size())
-        throw InputError({path, 0}, "face refers to a texture coordinate that does not exist");
+        throwBadFaceReference(path, "face refers to a texture coordinate that does not exist");
       uint32_t id = uint32_t(mesh.positions.size());
       remap.emplace(key, id);
       mesh.indices.push_back(id);

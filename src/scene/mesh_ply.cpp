@@ -2,8 +2,12 @@
 // because no PLY library is available. The whole file is read into memory once; the header
 // is parsed into element/property declarations and the body is then walked element by
 // element, keeping vertex positions/normals/uvs and face index lists and skipping the rest.
+// Errors name their line in the header and in an ascii body. A binary body has no lines: its
+// errors give the byte offset, at line 0, and the scene loader reports them at the XML line
+// that names the file (src/scene/referenced_file.h).
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -186,7 +190,8 @@ class HeaderParser {
     return type;
   }
 
-  SourceLocation where() const { return {path_, line_}; }
+  // Line 1 also for an empty file, which has no line at all.
+  SourceLocation where() const { return {path_, std::max(line_, 1)}; }
   [[noreturn]] void fail(const std::string& cause) const { throw InputError(where(), cause); }
 
   const std::string& data_;
@@ -225,12 +230,12 @@ class AsciiSource {
       const char* digits = (*begin == '+' && stop - begin > 1) ? begin + 1 : begin;
       result = std::from_chars(digits, stop, value);
     }
-    if (result.ec != std::errc() || result.ptr != stop)
-      throw InputError(where(), "bad number '" + std::string(begin, stop) + "'");
+    if (result.ec != std::errc() || result.ptr != stop) fail("bad number '" + std::string(begin, stop) + "'");
     return value;
   }
 
-  SourceLocation where() const { return {path_, tokenLine_}; }
+  // At the line of the last value read.
+  [[noreturn]] void fail(const std::string& cause) const { throw InputError({path_, tokenLine_}, cause); }
   size_t bytesLeft() const { return size_t(end_ - p_); }
 
  private:
@@ -240,7 +245,7 @@ class AsciiSource {
       if (*p_ == '\n') line_++;
       p_++;
     }
-    if (p_ == end_) throw InputError(where(), "unexpected end of file");
+    if (p_ == end_) fail("unexpected end of file");
     tokenLine_ = line_;
     const char* begin = p_;
     while (p_ < end_ && !isSpace(*p_)) p_++;
@@ -259,14 +264,17 @@ class AsciiSource {
 class BinarySource {
  public:
   BinarySource(const std::string& data, const PlyHeader& header, const std::string& path)
-      : p_(reinterpret_cast<const unsigned char*>(data.data()) + header.bodyOffset),
-        end_(reinterpret_cast<const unsigned char*>(data.data()) + data.size()),
+      : begin_(reinterpret_cast<const unsigned char*>(data.data())),
+        p_(begin_ + header.bodyOffset),
+        value_(p_),
+        end_(begin_ + data.size()),
         path_(path),
         bigEndian_(header.format == PlyFormat::BinaryBigEndian) {}
 
   double next(PlyType type) {
     size_t n = typeSize(type);
-    if (size_t(end_ - p_) < n) throw InputError(where(), "unexpected end of file");
+    value_ = p_;
+    if (size_t(end_ - p_) < n) fail("unexpected end of file");
     // Assemble the value's bits arithmetically so the host's byte order does not matter.
     uint64_t bits = 0;
     for (size_t i = 0; i < n; ++i) bits |= uint64_t(p_[bigEndian_ ? n - 1 - i : i]) << (8 * i);
@@ -299,12 +307,16 @@ class BinarySource {
     return 0;
   }
 
-  // Binary data has no lines: errors name the file as a whole.
-  SourceLocation where() const { return {path_, 0}; }
+  // At the byte offset of the last value read (no line: see the top of this file).
+  [[noreturn]] void fail(const std::string& cause) const {
+    throw InputError({path_, 0}, cause + " at byte " + std::to_string(value_ - begin_));
+  }
   size_t bytesLeft() const { return size_t(end_ - p_); }
 
  private:
+  const unsigned char* begin_;
   const unsigned char* p_;
+  const unsigned char* value_;  // start of the last value read
   const unsigned char* end_;
   const std::string& path_;
   bool bigEndian_;
@@ -338,7 +350,7 @@ void skipProperty(Source& src, const PlyProperty& property) {
     return;
   }
   double count = src.next(property.countType);
-  if (count < 0) throw InputError(src.where(), "negative list length");
+  if (count < 0) src.fail("negative list length");
   for (uint64_t i = 0, n = uint64_t(count); i < n; ++i) src.next(property.type);
 }
 
@@ -394,7 +406,10 @@ void readVertices(Source& src, const PlyElement& element, const VertexLayout& la
       else
         values[slot] = src.next(element.properties[p].type);
     }
-    mesh.positions.push_back({float(values[kX]), float(values[kY]), float(values[kZ])});
+    const Vec3 position{float(values[kX]), float(values[kY]), float(values[kZ])};
+    if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z))
+      src.fail("non-finite vertex position");
+    mesh.positions.push_back(position);
     if (layout.hasNormals)
       mesh.normals.push_back({float(values[kNX]), float(values[kNY]), float(values[kNZ])});
     if (layout.hasUvs) {
@@ -433,16 +448,13 @@ void readFaces(Source& src, const PlyElement& element, size_t listIndex, uint64_
         continue;
       }
       double count = src.next(list.countType);
-      if (count < 3)
-        throw InputError(src.where(), "face with " + std::to_string(int64_t(count)) +
-                                          " vertices (at least 3 needed)");
+      if (count < 3) src.fail("face with " + std::to_string(int64_t(count)) + " vertices (at least 3 needed)");
       polygon.clear();
       for (uint64_t k = 0, n = uint64_t(count); k < n; ++k) {
         double index = src.next(list.type);
         if (index < 0 || index >= double(vertexCount))
-          throw InputError(src.where(), "vertex index " + std::to_string(int64_t(index)) +
-                                            " out of range (" + std::to_string(vertexCount) +
-                                            " vertices)");
+          src.fail("vertex index " + std::to_string(int64_t(index)) + " out of range (" +
+                   std::to_string(vertexCount) + " vertices)");
         polygon.push_back(uint32_t(index));
       }
       // Fan triangulation: exact for the convex polygons PLY exporters write.

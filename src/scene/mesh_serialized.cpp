@@ -1,7 +1,9 @@
 // Mitsuba 0.6 `.serialized` meshes. A file holds several shapes, each a small header
 // (uint16 magic 0x041C, uint16 version 3 or 4) followed by a zlib stream with the shape's
 // flags, counts and arrays; a dictionary at the end of the file gives each shape's offset.
-// Everything is little-endian.
+// Everything is little-endian. The file has no lines: errors name it as a whole (line 0), with
+// the byte offset or the triangle at fault, and the scene loader reports them at the XML line
+// that names the file (src/scene/referenced_file.h).
 #include <zlib.h>
 
 #include <algorithm>
@@ -53,7 +55,9 @@ double loadDouble(const unsigned char* p) {
 // sized from the counts in the stream itself.
 class Inflater {
  public:
-  Inflater(const unsigned char* data, size_t size, const std::string& path) : path_(path) {
+  // `data` starts at byte `fileOffset` of the file.
+  Inflater(const unsigned char* data, size_t size, size_t fileOffset, const std::string& path)
+      : path_(path), fileOffset_(fileOffset) {
     stream_.next_in = const_cast<unsigned char*>(data);  // zlib's API is not const-correct
     stream_.avail_in = uInt(std::min<size_t>(size, UINT_MAX));
     if (inflateInit(&stream_) != Z_OK) fail("cannot initialise zlib");
@@ -107,10 +111,14 @@ class Inflater {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& cause) const { throw InputError({path_, 0}, cause); }
+  // At the compressed byte zlib had read up to.
+  [[noreturn]] void fail(const std::string& cause) const {
+    throw InputError({path_, 0}, cause + " at byte " + std::to_string(fileOffset_ + stream_.total_in));
+  }
 
   z_stream stream_{};
   const std::string& path_;
+  size_t fileOffset_;
 };
 
 class SerializedFile {
@@ -124,7 +132,7 @@ class SerializedFile {
     uint64_t offset = shapeIndex == 0 ? 0 : shapeOffset(shapeIndex, version);
     version = shapeHeader(offset);
     size_t start = size_t(offset) + 4;
-    Inflater in(bytes() + start, data_.size() - start, path_);
+    Inflater in(bytes() + start, data_.size() - start, start, path_);
     return readMesh(in, version, data_.size() - start);
   }
 
@@ -135,10 +143,11 @@ class SerializedFile {
       fail(offset == 0 ? "file too short for a serialized mesh"
                        : "shape offset beyond end of file");
     const unsigned char* p = bytes() + offset;
-    if (loadLE(p, 2) != kMagic) fail("not a Mitsuba serialized mesh (bad magic number)");
+    const std::string at = " at byte " + std::to_string(offset);
+    if (loadLE(p, 2) != kMagic) fail("not a Mitsuba serialized mesh (bad magic number)" + at);
     uint64_t version = loadLE(p + 2, 2);
     if (version != 3 && version != 4)
-      fail("unsupported serialized mesh version " + std::to_string(version) + " (expected 3 or 4)");
+      fail("unsupported serialized mesh version " + std::to_string(version) + " (expected 3 or 4)" + at);
     return int(version);
   }
 
@@ -205,7 +214,7 @@ class SerializedFile {
     for (size_t i = 0; i < indices.size(); ++i) {
       uint64_t index = loadLE(&raw[4 * i], 4);
       if (index >= vertexCount)
-        fail("vertex index " + std::to_string(index) + " out of range (" +
+        fail("vertex index " + std::to_string(index) + " of triangle " + std::to_string(i / 3) + " out of range (" +
              std::to_string(vertexCount) + " vertices)");
       indices[i] = uint32_t(index);
     }

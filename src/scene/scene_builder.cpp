@@ -1,5 +1,7 @@
 #include "scene_builder.h"
 
+#include "referenced_file.h"
+
 #include <cctype>
 #include <filesystem>
 
@@ -75,12 +77,20 @@ std::string SceneBuilder::resolvePath(const Document& doc, const std::string& re
   return other.string();
 }
 
+void SceneBuilder::requireFile(const std::string& path, const SourceLocation& where, const std::string& what) const {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (!fs::exists(status)) throw InputError(where, what + " '" + path + "' not found");
+  if (fs::is_directory(status)) throw InputError(where, what + " '" + path + "' is a directory");
+}
+
 void SceneBuilder::loadFile(const std::string& path, int includeDepth) {
   const Document& doc = documents_.emplace_back(path);
   pugi::xml_node root = doc.root();
   if (std::string(root.name()) != "scene")
     throw InputError(doc.where(root), std::string("expected <scene> as the root element, found <") + root.name() + ">");
   if (includeDepth == 0) {
+    sceneElement_ = doc.where(root);
     std::string version = root.attribute("version").value();
     if (version.empty()) {
       scene_.warnings.add(doc.where(root), "<scene> has no version attribute; assuming Mitsuba 3 (3.0.0)");
@@ -120,8 +130,8 @@ void SceneBuilder::include(const Document& doc, const pugi::xml_node& node, int 
   if (includeDepth >= kMaxIncludeDepth)
     throw InputError(doc.where(node), "includes nested more than 16 deep (an include cycle?)");
   std::string file = resolvePath(doc, attribute(doc, node, "filename"), doc.where(node));
-  if (!fs::exists(file)) throw InputError(doc.where(node), "included file '" + file + "' not found");
-  loadFile(file, includeDepth + 1);
+  requireFile(file, doc.where(node), "included file");
+  readReferencedFile(doc.where(node), [&] { loadFile(file, includeDepth + 1); });
 }
 
 Properties SceneBuilder::readProperties(const Document& doc, const pugi::xml_node& node,

@@ -20,6 +20,9 @@ class SceneBuilder {
  public:
   SceneBuilder(Scene& scene, const LoadOptions& options);
   void loadFile(const std::string& path, int includeDepth);
+  // The <scene> element of the file loadFile was first given: where problems of the scene as
+  // a whole (nothing to render) are reported.
+  const SourceLocation& sceneElement() const { return sceneElement_; }
 
  private:
   friend struct ElementReader;
@@ -67,11 +70,15 @@ class SceneBuilder {
   // whose path differs only in letter case does (a scene made on Windows or macOS), that one,
   // with a warning at `where` naming both.
   std::string resolvePath(const Document& doc, const std::string& relative, const SourceLocation& where) const;
+  // Throws InputError at `where` unless `path` exists and is not a directory ("<what> '<path>'
+  // not found"). Errors inside the file come from its reader (referenced_file.h).
+  void requireFile(const std::string& path, const SourceLocation& where, const std::string& what) const;
   int materialById(const Document& doc, const pugi::xml_node& node, const std::string& id);
   // Appends a shape's triangles, placed by toWorld, to `soup` (the world mesh or the
-  // instance prototypes).
+  // instance prototypes). `meshName` (the mesh file, or the shape's type) is named in errors
+  // about its vertices, which are reported at the shape.
   void appendMesh(TriangleSoup& soup, MeshData& mesh, const Transform& toWorld, const Properties& props, int material,
-                  int shapeIndex, const SourceLocation& meshWhere);
+                  int shapeIndex, const std::string& meshName);
   // An exact sphere, when to_world keeps it one (rotation, uniform scale, translation);
   // false otherwise (the caller tessellates it).
   bool appendSphere(Vec3 center, float radius, const Transform& toWorld, bool flip, int material, int shapeIndex);
@@ -80,7 +87,8 @@ class SceneBuilder {
   Scene& scene_;
   Defines defines_;
   bool tessellateSpheres_ = false;
-  int majorVersion_ = 0;  // 0: Mitsuba 0.5/0.6 dialect, >= 2: Mitsuba 2/3 dialect
+  int majorVersion_ = 0;
+  SourceLocation sceneElement_;  // 0: Mitsuba 0.5/0.6 dialect, >= 2: Mitsuba 2/3 dialect
   std::list<Document> documents_;  // kept alive: nodes point into them
   std::map<std::string, int> materialIds_, textureIds_;
   std::map<std::string, pugi::xml_node> shapeGroups_;

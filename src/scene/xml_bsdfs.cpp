@@ -1,9 +1,9 @@
 // <bsdf> and <texture> plugins.
 #include <cmath>
-#include <filesystem>
 
 #include "erpt/bsdf.h"
 #include "erpt/image_io.h"
+#include "referenced_file.h"
 #include "scene_builder.h"
 
 namespace erpt::xml {
@@ -269,9 +269,9 @@ int SceneBuilder::texture(const Document& doc, const pugi::xml_node& node) {
     const Property* file = props.find("filename");
     if (!file) throw InputError(doc.where(node), "bitmap texture needs a 'filename'");
     std::string path = resolvePath(doc, file->value, file->where);
-    if (!std::filesystem::exists(path)) throw InputError(file->where, "texture file '" + path + "' not found");
+    requireFile(path, file->where, "texture file");
     bool srgb = false;
-    RgbImage img = readImage(path, &srgb);
+    RgbImage img = readReferencedFile(file->where, [&] { return readImage(path, &srgb); });
     bool raw = props.getBool("raw", false);
     for (Color& c : img.pixels) c = (srgb && !raw) ? srgbToLinear(c) : c;
     t.width = img.width;

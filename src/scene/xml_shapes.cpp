@@ -1,8 +1,7 @@
 // <shape> and <emitter> plugins, and the checks every mesh goes through before it joins
 // the scene: finite positions, valid indices, degenerate triangles dropped and counted.
-#include <filesystem>
-
 #include "erpt/mesh_io.h"
+#include "referenced_file.h"
 #include "scene_builder.h"
 
 namespace erpt::xml {
@@ -108,21 +107,24 @@ bool SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const 
   bool exactSphere = false;
   Vec3 sphereCenter(0.0f);
   float sphereRadius = 1;
-  SourceLocation meshWhere = where;
+  std::string meshName = type;           // the mesh file, for messages about its vertices
+  SourceLocation fileWhere = where;      // the XML line that names the mesh file
   auto meshFile = [&]() {
     const Property* file = props.find("filename");
     if (!file) throw InputError(where, "shape '" + type + "' needs a 'filename'");
     std::string path = resolvePath(doc, file->value, file->where);
-    if (!std::filesystem::exists(path)) throw InputError(file->where, "mesh file '" + path + "' not found");
-    meshWhere = {path, 0};
+    requireFile(path, file->where, "mesh file");
+    meshName = path;
+    fileWhere = file->where;
     return path;
   };
   // Members of a shapegroup are loaded once per instance: their files are read once.
   auto readOnce = [&](const std::string& key, auto read) -> MeshData {
-    if (!parent) return read();
+    auto readHere = [&] { return readReferencedFile(fileWhere, read); };
+    if (!parent) return readHere();
     const auto cached = instanceMeshes_.find(key);
     if (cached != instanceMeshes_.end()) return cached->second;
-    return instanceMeshes_[key] = read();
+    return instanceMeshes_[key] = readHere();
   };
   if (type == "obj") {
     std::string path = meshFile();
@@ -202,7 +204,7 @@ bool SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const 
     exactSphere = false;
   }
   if (type == "sphere" && !exactSphere) mesh = makeSphere(sphereCenter, sphereRadius);
-  if (!exactSphere) appendMesh(soup, mesh, toWorld, props, material, shapeIndex, meshWhere);
+  if (!exactSphere) appendMesh(soup, mesh, toWorld, props, material, shapeIndex, meshName);
   scene_.shapes.back().triangleCount = uint32_t(soup.triangleCount()) - info.firstTriangle;
 
   if (!emitters.empty() && scene_.materials[size_t(material)].masked)
@@ -218,7 +220,7 @@ bool SceneBuilder::shape(const Document& doc, const pugi::xml_node& node, const 
 }
 
 void SceneBuilder::appendMesh(TriangleSoup& soup, MeshData& mesh, const Transform& toWorld, const Properties& props,
-                              int material, int shapeIndex, const SourceLocation& meshWhere) {
+                              int material, int shapeIndex, const std::string& meshName) {
   const bool flip = props.getBool("flip_normals", false);
   const bool hasNormals = !mesh.normals.empty(), hasUvs = !mesh.uvs.empty();
   const uint32_t base = uint32_t(soup.vertexCount());
@@ -228,7 +230,7 @@ void SceneBuilder::appendMesh(TriangleSoup& soup, MeshData& mesh, const Transfor
     Vec3 p = toWorld.point(mesh.positions[i]);
     if (!isFinite(p))
       throw InputError(scene_.shapes[shapeIndex].where, "non-finite vertex position after to_world (" +
-                                                            meshWhere.file + ", vertex " + std::to_string(i) + ")");
+                                                            meshName + ", vertex " + std::to_string(i) + ")");
     soup.px.push_back(p.x);
     soup.py.push_back(p.y);
     soup.pz.push_back(p.z);
@@ -249,7 +251,8 @@ void SceneBuilder::appendMesh(TriangleSoup& soup, MeshData& mesh, const Transfor
   for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
     if (a >= vertexCount || b >= vertexCount || c >= vertexCount)
-      throw InputError(meshWhere, "triangle " + std::to_string(t / 3) + " refers to a vertex that does not exist");
+      throw InputError(scene_.shapes[shapeIndex].where,
+                       meshName + ": triangle " + std::to_string(t / 3) + " refers to a vertex that does not exist");
     if (flip) std::swap(b, c);  // flipping the winding flips the face normal
     Vec3 pa = soup.position(base + a);
     Vec3 n = cross(soup.position(base + b) - pa, soup.position(base + c) - pa);
@@ -311,9 +314,9 @@ std::shared_ptr<const EnvironmentMap> SceneBuilder::environmentMap(const Documen
   const Property* file = props.find("filename");
   if (!file) throw InputError(where, "envmap needs a 'filename'");
   const std::string path = resolvePath(doc, file->value, file->where);
-  if (!std::filesystem::exists(path)) throw InputError(file->where, "environment map file '" + path + "' not found");
+  requireFile(path, file->where, "environment map file");
   bool srgb = false;
-  RgbImage image = readImage(path, &srgb);
+  RgbImage image = readReferencedFile(file->where, [&] { return readImage(path, &srgb); });
   // Mitsuba 0.6's gamma override: 0 (default) as the file says, -1 sRGB, 1 linear, else a power.
   const float gamma = props.getFloat("gamma", 0.0f);
   for (Color& c : image.pixels) {
@@ -401,6 +404,7 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
   scene.file = path;
   xml::SceneBuilder builder(scene, options);
   builder.loadFile(path, 0);
+  const SourceLocation sceneElement = builder.sceneElement();
   for (const Material& m : scene.materials) scene.adjustsShadingFrames |= m.adjustsShadingFrame();
   // Instanced triangles take the primitive ids after the world's own, instance by instance.
   uint64_t next = scene.worldPrimitiveCount();
@@ -408,10 +412,10 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
     scene.instances.firstPrimitive[k] = uint32_t(next);
     next += scene.instances.groupTriangleCount[scene.instances.group[k]];
     if (next >= 0xffff0000u)
-      throw InputError({path, 0}, "the instances place more than 4 billion triangles (primitive ids are 32-bit)");
+      throw InputError(sceneElement, "the instances place more than 4 billion triangles (primitive ids are 32-bit)");
   }
   if (scene.primitiveCount() == 0 && scene.emitters.empty())
-    throw InputError({path, 0}, "the scene has no geometry and no emitters");
+    throw InputError(sceneElement, "the scene has no geometry and no emitters");
   return scene;
 }
 

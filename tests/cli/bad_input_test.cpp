@@ -62,7 +62,7 @@ const BadCase kCases[] = {
     {"CorruptEnvironmentMap",
      "<scene version=\"3.0.0\">\n  <shape type=\"cube\"/>\n  <emitter type=\"envmap\">\n"
      "    <string name=\"filename\" value=\"sky.hdr\"/>\n  </emitter>\n</scene>\n",
-     "sky.hdr=not an image", "", 0, "sky.hdr", "cannot read image"},
+     "sky.hdr=not an image", "", 4, nullptr, "sky.hdr: cannot read image"},
     {"BlendWithOnePart",
      "<scene version=\"3.0.0\">\n  <shape type=\"cube\">\n    <bsdf type=\"blendbsdf\">\n"
      "      <bsdf type=\"diffuse\"/>\n    </bsdf>\n  </shape>\n</scene>\n",
@@ -131,11 +131,11 @@ const BadCase kCases[] = {
     {"ObjNormalIndexOutOfRange",
      "<scene version=\"3.0.0\">\n  <shape type=\"obj\">\n    <string name=\"filename\" value=\"m.obj\"/>\n  "
      "</shape>\n</scene>\n",
-     "m.obj=v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//7\n", "", 0, "m.obj", "normal that does not exist"},
+     "m.obj=v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//7\n", "", 0, "m.obj:5", "face refers to normal 7"},
     {"ObjUvIndexOutOfRange",
      "<scene version=\"3.0.0\">\n  <shape type=\"obj\">\n    <string name=\"filename\" value=\"m.obj\"/>\n  "
      "</shape>\n</scene>\n",
-     "m.obj=v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n", "", 0, "m.obj", "texture coordinate that does not exist"},
+     "m.obj=v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n", "", 0, "m.obj:5", "face refers to texture coordinate 2"},
     {"BadDefineOnCommandLine", "<scene version=\"3.0.0\">\n  <shape type=\"cube\"/>\n</scene>\n", nullptr, "-D novalue",
      -1, nullptr, "-D expects name=value"},
 };

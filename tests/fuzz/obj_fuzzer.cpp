@@ -5,6 +5,6 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string path = erpt::fuzz::writeInput("mesh.obj", data, size);
   erpt::Warnings warnings;
-  erpt::fuzz::expectCleanFailure([&] { erpt::readObj(path, true, warnings); });
+  erpt::fuzz::expectCleanFailure([&] { erpt::readObj(path, true, warnings); }, erpt::fuzz::Place::Line);
   return 0;
 }

@@ -5,6 +5,6 @@
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string path = erpt::fuzz::writeInput("mesh.ply", data, size);
   erpt::Warnings warnings;
-  erpt::fuzz::expectCleanFailure([&] { erpt::readPly(path, warnings); });
+  erpt::fuzz::expectCleanFailure([&] { erpt::readPly(path, warnings); }, erpt::fuzz::Place::LineOrByte);
   return 0;
 }

@@ -5,6 +5,6 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string path = erpt::fuzz::writeInput("scene.xml", data, size);
-  erpt::fuzz::expectCleanFailure([&] { erpt::loadScene(path); });
+  erpt::fuzz::expectCleanFailure([&] { erpt::loadScene(path); }, erpt::fuzz::Place::Line);
   return 0;
 }

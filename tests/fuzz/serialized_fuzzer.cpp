@@ -22,6 +22,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   file.insert(file.end(), {1, 0, 0, 0});             // one shape
   const std::string path = erpt::fuzz::writeInput("mesh.serialized", file.data(), file.size());
   erpt::Warnings warnings;
-  erpt::fuzz::expectCleanFailure([&] { erpt::readSerialized(path, 0, warnings); });
+  erpt::fuzz::expectCleanFailure([&] { erpt::readSerialized(path, 0, warnings); }, erpt::fuzz::Place::File);
   return 0;
 }

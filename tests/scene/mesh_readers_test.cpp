@@ -1,49 +1,23 @@
 // PLY and Mitsuba .serialized readers: small files are written to a temporary directory
-// (binary ones byte by byte, serialized shapes compressed with zlib here) and read back.
+// (binary ones byte by byte, serialized shapes compressed with zlib: support/mesh_bytes.h) and
+// read back.
 #include <gtest/gtest.h>
-#include <zlib.h>
 
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 #include "erpt/mesh_io.h"
+#include "support/mesh_bytes.h"
 
 namespace erpt {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Appends values to a byte string in a chosen byte order, independent of the host's.
-struct ByteWriter {
-  bool bigEndian = false;
-  std::string bytes;
-
-  template <class T>
-  ByteWriter& put(T value) {
-    static_assert(std::is_arithmetic_v<T>, "numbers only");
-    // The value's bits as an unsigned integer of the same size, then shifted out bytewise.
-    using Bits = std::conditional_t<
-        sizeof(T) == 1, uint8_t,
-        std::conditional_t<sizeof(T) == 2, uint16_t,
-                           std::conditional_t<sizeof(T) == 4, uint32_t, uint64_t>>>;
-    Bits bits;
-    std::memcpy(&bits, &value, sizeof bits);
-    for (size_t i = 0; i < sizeof(T); ++i) {
-      size_t shift = 8 * (bigEndian ? sizeof(T) - 1 - i : i);
-      bytes += char((bits >> shift) & 0xFF);
-    }
-    return *this;
-  }
-  ByteWriter& text(const std::string& s) {
-    bytes += s;
-    return *this;
-  }
-};
+using test::ByteWriter;
 
 class MeshReadersTest : public ::testing::Test {
  protected:
@@ -315,72 +289,14 @@ TEST_F(MeshReadersTest, PlyUnknownPropertyType) {
 // ---------------------------------------------------------------------------------------
 // Mitsuba .serialized
 
-enum : uint32_t {
-  kNormals = 0x0001,
-  kUvs = 0x0002,
-  kColors = 0x0008,
-  kFaceNormals = 0x0010,
-  kFloat32 = 0x1000,
-  kFloat64 = 0x2000,
-};
-
-struct TestShape {
-  uint32_t flags = kFloat32;
-  std::string name = "shape";
-  std::vector<double> positions, normals, uvs, colors;  // flattened
-  std::vector<uint32_t> indices;
-};
-
-// One shape as Mitsuba writes it: magic, version, then the zlib-compressed payload.
-std::string serializeShape(const TestShape& shape, uint16_t version) {
-  ByteWriter payload;
-  payload.put(shape.flags);
-  if (version == 4) payload.text(shape.name).put(uint8_t(0));
-  payload.put(uint64_t(shape.positions.size() / 3)).put(uint64_t(shape.indices.size() / 3));
-  auto reals = [&](const std::vector<double>& values) {
-    for (double v : values) {
-      if (shape.flags & kFloat64)
-        payload.put(v);
-      else
-        payload.put(float(v));
-    }
-  };
-  reals(shape.positions);
-  reals(shape.normals);
-  reals(shape.uvs);
-  reals(shape.colors);
-  for (uint32_t i : shape.indices) payload.put(i);
-
-  std::string compressed(compressBound(uLong(payload.bytes.size())), '\0');
-  uLongf size = uLongf(compressed.size());
-  EXPECT_EQ(compress2(reinterpret_cast<Bytef*>(&compressed[0]), &size,
-                      reinterpret_cast<const Bytef*>(payload.bytes.data()),
-                      uLong(payload.bytes.size()), Z_BEST_COMPRESSION),
-            Z_OK);
-  compressed.resize(size);
-
-  ByteWriter out;
-  out.put(uint16_t(0x041C)).put(version);
-  return out.bytes + compressed;
-}
-
-// Shapes followed by the offset dictionary (uint64 offsets in version 4, uint32 in 3).
-std::string serializeFile(const std::vector<TestShape>& shapes, uint16_t version) {
-  ByteWriter file;
-  std::vector<uint64_t> offsets;
-  for (const TestShape& shape : shapes) {
-    offsets.push_back(file.bytes.size());
-    file.text(serializeShape(shape, version));
-  }
-  for (uint64_t offset : offsets) {
-    if (version == 4)
-      file.put(offset);
-    else
-      file.put(uint32_t(offset));
-  }
-  file.put(uint32_t(shapes.size()));
-  return file.bytes;
-}
+using test::kColors;
+using test::kFaceNormals;
+using test::kFloat32;
+using test::kFloat64;
+using test::kNormals;
+using test::kUvs;
+using test::serializeFile;
+using test::TestShape;
 
 TestShape floatTriangleWithNormalsAndUvs() {
   TestShape shape;
@@ -487,7 +403,7 @@ TEST_F(MeshReadersTest, SerializedIndexOutOfRange) {
   shape.indices = {0, 1, 4};
   std::string path = write("range.serialized", serializeFile({shape}, 4));
   expectInputError([&] { readSerialized(path, 0, warnings_); }, path,
-                   "vertex index 4 out of range");
+                   "vertex index 4 of triangle 0 out of range");
 }
 
 TEST_F(MeshReadersTest, SerializedBadMagicAndVersion) {
