@@ -47,7 +47,8 @@ class SceneBuilder {
   int emitter(const Document& doc, const pugi::xml_node& node, int shape);
   // A one-line warning when a mask's opacity is partial (neither ~0 nor ~1) anywhere it matters.
   void warnPartialOpacity(const ColorParam& opacity, const SourceLocation& where);
-  int shadingMapTexture(const Document& doc, const Properties& props, const std::vector<pugi::xml_node>& children);
+  // The texture a plugin wraps (normalmap, bumpmap, scale): named or nested, by value or <ref>; -1: none.
+  int nestedTexture(const Document& doc, const Properties& props, const std::vector<pugi::xml_node>& children);
   // An `envmap`'s image, read, decoded and turned into the sampling tables.
   std::shared_ptr<const EnvironmentMap> environmentMap(const Document& doc, Properties& props, const SourceLocation& where);
   // `sky`, `sun` and `sunsky` (xml_daylight.cpp): adds the environment emitter they are drawn

@@ -132,7 +132,7 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
       throw InputError(props.find("weight")->where, "blendbsdf weight must be in [0, 1]");
   } else if (type == "normalmap" || type == "bumpmap") {
     m = wrapped();
-    const int map = shadingMapTexture(doc, props, children);
+    const int map = nestedTexture(doc, props, children);
     if (map < 0) throw InputError(doc.where(node), type + " needs a <texture> (the " +
                                                        (type == "normalmap" ? "normals" : "heights") + ")");
     m.shadingMap = type == "normalmap" ? ShadingMap::Normal : ShadingMap::Bump;
@@ -220,10 +220,11 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
   return index;
 }
 
-// The texture of a normalmap / bumpmap: Mitsuba 3 names it (`normalmap`, or anything for a
-// bumpmap), Mitsuba 0.6 nests it unnamed; by value or by <ref>.
-int SceneBuilder::shadingMapTexture(const Document& doc, const Properties& props,
-                                    const std::vector<pugi::xml_node>& children) {
+// The texture inside a normalmap, bumpmap or scale texture: Mitsuba 3 names it (`normalmap`,
+// or anything), Mitsuba 0.6 nests it unnamed; by value or by <ref> (Mitsuba takes a reference
+// wherever it takes a texture).
+int SceneBuilder::nestedTexture(const Document& doc, const Properties& props,
+                                const std::vector<pugi::xml_node>& children) {
   if (const Property* p = props.findTag("texture")) return p->texture;
   for (const pugi::xml_node& c : children) {
     const std::string tag = c.name();
@@ -280,14 +281,24 @@ int SceneBuilder::texture(const Document& doc, const pugi::xml_node& node) {
     for (const char* ignored : {"filter_type", "wrap_mode", "gamma"}) props.find(ignored);
   } else if (type == "scale") {
     // A texture times a constant (Mitsuba 0.6's way of scaling a bump map's heights): baked.
-    const Property* inner = props.findTag("texture");
-    int nestedTexture = inner ? inner->texture : -1;
-    for (const pugi::xml_node& c : children)
-      if (nestedTexture < 0 && std::string(c.name()) == "texture") nestedTexture = texture(doc, c);
-    if (nestedTexture < 0) throw InputError(doc.where(node), "scale texture needs a nested <texture>");
-    const float factor = props.getFloat("scale", 1.0f);
-    if (!std::isfinite(factor)) throw InputError(props.find("scale")->where, "texture scale must be finite");
-    t = scene_.textures[size_t(nestedTexture)];
+    // As in Mitsuba 0.6, the scaled thing may also be a constant `value`, and the scale a colour.
+    int inner = nestedTexture(doc, props, children);
+    if (inner < 0 && props.has("value")) {
+      Texture constant;
+      constant.color0 = constant.color1 = props.getColor("value", Color(1.0f));
+      inner = int(scene_.textures.size());
+      scene_.textures.push_back(constant);
+    }
+    if (inner < 0) {
+      for (const pugi::xml_node& c : children)
+        if (std::string(c.name()) == "ref")
+          throw InputError(doc.where(c), "reference to unknown texture id '" + attribute(doc, c, "id") + "'");
+      throw InputError(doc.where(node), "scale texture needs a nested <texture> (or a <ref> to one)");
+    }
+    const Color factor = props.getColor("scale", Color(1.0f));
+    if (!(std::isfinite(factor.x) && std::isfinite(factor.y) && std::isfinite(factor.z)))
+      throw InputError(props.find("scale")->where, "texture scale must be finite");
+    t = scene_.textures[size_t(inner)];
     for (Color& c : t.texels) c = c * factor;
     t.color0 = t.color0 * factor;
     t.color1 = t.color1 * factor;
