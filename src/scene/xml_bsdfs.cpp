@@ -147,6 +147,12 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
       throw InputError(props.find("material")->where, "unknown conductor material '" + metal + "'");
     m.eta = props.getColor("eta", m.eta);
     m.k = props.getColor("k", m.k);
+    // The medium outside the metal (Mitsuba 0.6's `ext_eta`, air by default, a number or a
+    // name): the Fresnel terms depend on eta and k relative to it. Mitsuba 3 has no exterior
+    // index (1); a scene that gives one is followed.
+    const float outside = props.getIOR("ext_eta", majorVersion_ == 0 ? 1.000277f : 1.0f);
+    m.eta = m.eta / outside;
+    m.k = m.k / outside;
     m.specularReflectance = props.getColorParam("specular_reflectance", Color(1.0f), scene_);
     if (m.kind == BsdfKind::RoughConductor) {
       readAlpha(props, w, m);
