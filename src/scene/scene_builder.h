@@ -62,6 +62,7 @@ class SceneBuilder {
   Properties readProperties(const Document& doc, const pugi::xml_node& node,
                             std::vector<pugi::xml_node>* children = nullptr);
   Transform readTransform(const Document& doc, const pugi::xml_node& node);
+  std::string blackbodyValue(const Document& doc, const pugi::xml_node& node);
   std::string attribute(const Document& doc, const pugi::xml_node& node, const char* name, bool required = true);
   // A referenced file's path, relative to the document. When it does not exist but a file
   // whose path differs only in letter case does (a scene made on Windows or macOS), that one,
