@@ -18,7 +18,8 @@ MicrofacetKind readDistribution(const Properties& props, Warnings& warnings) {
 }
 
 // The roughness of `m` from alpha, or alpha_u and alpha_v (anisotropic: roughconductor and
-// roughdielectric, as in Mitsuba; roughplastic is isotropic there too: it gets their mean).
+// roughdielectric, as in Mitsuba; roughplastic and roughcoating are isotropic there: they get
+// their mean).
 void readAlpha(const Properties& props, Warnings& warnings, Material& m) {
   auto checked = [&](const char* name, float a) {
     if (!(a > 0 && a <= 4)) throw InputError(props.find(name) ? props.find(name)->where : props.where(),
@@ -30,8 +31,9 @@ void readAlpha(const Properties& props, Warnings& warnings, Material& m) {
   if (!props.has("alpha_u") && !props.has("alpha_v")) return;
   const float au = checked("alpha_u", props.getFloat("alpha_u", m.alpha));
   const float av = checked("alpha_v", props.getFloat("alpha_v", m.alpha));
-  if (m.kind == BsdfKind::RoughPlastic) {
-    warnings.add(props.where(), "roughplastic is isotropic; using alpha = (alpha_u + alpha_v) / 2");
+  if (m.kind == BsdfKind::RoughPlastic || m.kind == BsdfKind::RoughCoating) {
+    const char* type = m.kind == BsdfKind::RoughPlastic ? "roughplastic" : "roughcoating";
+    warnings.add(props.where(), std::string(type) + " is isotropic; using alpha = (alpha_u + alpha_v) / 2");
     m.alpha = 0.5f * (au + av);
     return;
   }
@@ -110,6 +112,11 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
         Material first = part.blendParts[0];
         part = first;
       }
+      if (part.isCoating()) {
+        w.add(doc.where(c), "a coating inside a blendbsdf is not supported; using the coating's nested BSDF");
+        Material under = part.coated[0];
+        part = under;
+      }
       // Cut-outs and shading maps act on the whole surface: only the outermost wrapper's count.
       if (part.masked || part.shadingMap != ShadingMap::None)
         w.add(doc.where(c), "a mask, normalmap or bumpmap inside a blendbsdf is ignored; wrap the blendbsdf instead");
@@ -181,6 +188,35 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
       readAlpha(props, w, m);
       m.distribution = readDistribution(props, w);
     }
+  } else if (type == "coating" || type == "roughcoating") {
+    const int inner = nested();
+    if (inner < 0) throw InputError(doc.where(node), type + " needs a nested <bsdf>");
+    const Material& under = scene_.materials[size_t(inner)];
+    const bool transmits = under.kind == BsdfKind::Dielectric || under.kind == BsdfKind::ThinDielectric ||
+                           under.kind == BsdfKind::RoughDielectric;
+    std::string unsupported;
+    if (transmits) unsupported = "a coating over a transmissive BSDF";
+    else if (under.kind == BsdfKind::Blend) unsupported = "a coating over a blendbsdf";
+    else if (under.isCoating()) unsupported = "a coating over a coating";
+    else if (under.masked || under.shadingMap != ShadingMap::None) unsupported = "a coating over a mask, normalmap or bumpmap";
+    if (!unsupported.empty()) {
+      w.add(doc.where(node), unsupported + " is not supported; using the nested BSDF alone (no layer)");
+      if (!id.empty()) materialIds_[id] = inner;
+      return inner;
+    }
+    m.kind = type == "coating" ? BsdfKind::Coating : BsdfKind::RoughCoating;
+    m.coated = {under};
+    m.intIOR = props.getIOR("int_ior", 1.5046f);  // bk7, Mitsuba's default
+    m.extIOR = props.getIOR("ext_ior", 1.000277f);
+    m.thickness = props.getFloat("thickness", 1.0f);
+    if (!(m.thickness >= 0 && std::isfinite(m.thickness)))
+      throw InputError(props.find("thickness")->where, type + " thickness must be finite and not negative");
+    m.sigmaA = props.getColorParam("sigma_a", Color(0.0f), scene_);
+    m.specularReflectance = props.getColorParam("specular_reflectance", Color(1.0f), scene_);
+    if (m.kind == BsdfKind::RoughCoating) {
+      readAlpha(props, w, m);
+      m.distribution = readDistribution(props, w);
+    }
   } else if (type == "ward") {
     m.kind = BsdfKind::Ward;
     const std::string variant = props.getString("variant", "balanced");
@@ -208,7 +244,7 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     props = Properties(props.plugin(), props.where());  // its parameters mean nothing to diffuse
   }
   // Scenes written for rough variants (or other renderers) give smooth BSDFs a roughness.
-  if ((type == "dielectric" || type == "thindielectric" || type == "conductor" || type == "plastic") &&
+  if ((type == "dielectric" || type == "thindielectric" || type == "conductor" || type == "plastic" || type == "coating") &&
       (props.has("alpha") || props.has("alpha_u") || props.has("alpha_v"))) {
     const std::string name = props.has("alpha") ? "alpha" : props.has("alpha_u") ? "alpha_u" : "alpha_v";
     const Property* a = props.find(name);
