@@ -10,7 +10,7 @@
 namespace erpt {
 
 enum class BsdfKind { Diffuse, Conductor, RoughConductor, Dielectric, ThinDielectric, Plastic, RoughPlastic, RoughDielectric,
-                      Phong, Blend, Ward };
+                      Phong, Blend, Ward, Coating, RoughCoating };
 // Ward's normalisation variants, as Mitsuba 0.6 names them (`variant`).
 enum class WardVariant { Ward, WardDuer, Balanced };
 enum class MicrofacetKind { Beckmann, GGX };
@@ -45,29 +45,43 @@ struct Material {
   float bumpScale = 1;      // bumpmap: heights are multiplied by this (Mitsuba 3's `scale`)
   // Derived when the scene is finalized:
   float fdrInternal = 0;             // plastic: diffuse Fresnel reflectance seen from inside
-  float specularSamplingWeight = 0;  // plastic: share of samples given to the coat; phong: to the specular lobe
-  std::vector<float> coatTransmittance;  // roughplastic: 1 - coat albedo over cos(theta) in [0, 1]
+  float specularSamplingWeight = 0;  // plastic, coatings: share of samples given to the coat; phong: to the specular lobe
+  std::vector<float> coatTransmittance;  // roughplastic, roughcoating: 1 - coat albedo over cos(theta) in [0, 1]
   // blendbsdf: (1 - w) f_0 + w f_1 with w = blendWeight (its channels' mean, in [0, 1]); the
   // two parts are whole materials of their own (never blends themselves).
   std::vector<Material> blendParts;
   ColorParam blendWeight{Color(0.5f)};
+  // coating, roughcoating (Mitsuba 0.6): a dielectric layer (intIOR / extIOR; roughcoating:
+  // distribution, alpha) over `coated`, one reflective BSDF that is neither a blend nor a
+  // coating. sigmaA: the layer's absorption coefficient; thickness in its inverse units.
+  std::vector<Material> coated;
+  ColorParam sigmaA{Color(0.0f)};
+  float thickness = 1;
 
   float relativeIOR() const { return intIOR / extIOR; }
   float roughnessV() const { return alphaV > 0 ? alphaV : alpha; }
   // surfaceAt adjusts the shading frame at its hits: a map, or a frame along dp/du.
   bool adjustsShadingFrame() const { return shadingMap != ShadingMap::None || anisotropic(); }
   // The BSDF depends on the azimuth around the normal: its shading frame must follow dp/du.
+  bool isCoating() const { return kind == BsdfKind::Coating || kind == BsdfKind::RoughCoating; }
   bool anisotropic() const {
     if (kind == BsdfKind::Blend) return blendParts[0].anisotropic() || blendParts[1].anisotropic();
+    if (isCoating()) return coated[0].anisotropic();
     return (kind == BsdfKind::RoughConductor || kind == BsdfKind::RoughDielectric || kind == BsdfKind::Ward) &&
            alphaV > 0 && alphaV != alpha;
   }
+  // A smooth coating's own reflection is a Dirac lobe, a rough coating's is not; under either,
+  // the coated BSDF's Dirac lobes stay Dirac (refracted in and out, a mirror stays a mirror).
   bool isPureSpecular() const {
     if (kind == BsdfKind::Blend) return blendParts[0].isPureSpecular() && blendParts[1].isPureSpecular();
+    if (kind == BsdfKind::Coating) return coated[0].isPureSpecular();
+    if (kind == BsdfKind::RoughCoating) return false;
     return kind == BsdfKind::Conductor || kind == BsdfKind::Dielectric || kind == BsdfKind::ThinDielectric;
   }
   bool hasSpecular() const {
     if (kind == BsdfKind::Blend) return blendParts[0].hasSpecular() || blendParts[1].hasSpecular();
+    if (kind == BsdfKind::Coating) return true;
+    if (kind == BsdfKind::RoughCoating) return coated[0].hasSpecular();
     return isPureSpecular() || kind == BsdfKind::Plastic;
   }
 };
@@ -75,8 +89,10 @@ struct Material {
 // Resolved colour parameters of a material at one surface point.
 struct SurfaceColors {
   Color reflectance, specularReflectance, specularTransmittance;
-  // blendbsdf: the weight of the second part and each part's own colours.
+  // blendbsdf: the weight of the second part and each part's own colours; coating,
+  // roughcoating: parts[0] holds the coated BSDF's colours.
   float blendWeight = 0;
+  Color coatAbsorption{0.0f};  // coating, roughcoating: sigma_a * thickness
   struct Part {
     Color reflectance, specularReflectance, specularTransmittance;
   } parts[2];
@@ -97,6 +113,11 @@ SurfaceColors resolveSurfaceColors(const Material& m, Resolve&& resolve) {
   c.reflectance = resolve(m.reflectance);
   c.specularReflectance = resolve(m.specularReflectance);
   c.specularTransmittance = resolve(m.specularTransmittance);
+  if (m.isCoating()) {
+    const Material& under = m.coated[0];
+    c.parts[0] = {resolve(under.reflectance), resolve(under.specularReflectance), resolve(under.specularTransmittance)};
+    c.coatAbsorption = resolve(m.sigmaA) * m.thickness;
+  }
   if (m.kind == BsdfKind::Blend) {
     const Color w = resolve(m.blendWeight);
     const float mean = (w.x + w.y + w.z) / 3;

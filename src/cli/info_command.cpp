@@ -28,6 +28,8 @@ const char* kindName(BsdfKind k) {
     case BsdfKind::RoughPlastic: return "roughplastic";
     case BsdfKind::RoughDielectric: return "roughdielectric";
     case BsdfKind::Phong: return "phong";
+    case BsdfKind::Coating: return "coating";
+    case BsdfKind::RoughCoating: return "roughcoating";
   }
   return "?";
 }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "coating.h"
 #include "erpt/warp.h"
 
 namespace erpt {
@@ -37,17 +38,20 @@ float plasticSpecularProbability(const Material& m, float fresnelIn) {
   return s + d > 0 ? s / (s + d) : 0.0f;
 }
 
+}  // namespace
+
 // Fraction of light that crosses the coat at incidence cos(theta) (into or out of the
 // diffuse base): 1 - Fresnel for the smooth coat; for the rough coat, 1 - the microfacet
 // lobe's albedo, tabulated by finalizeMaterial (Mitsuba tabulates the same quantity).
 float coatTransmittance(const Material& m, float cosTheta) {
-  if (m.kind != BsdfKind::RoughPlastic || m.coatTransmittance.empty())
-    return 1 - fresnelDielectric(cosTheta, m.relativeIOR());
+  if (m.coatTransmittance.empty()) return 1 - fresnelDielectric(cosTheta, m.relativeIOR());
   float x = std::clamp(cosTheta, 0.0f, 1.0f) * float(m.coatTransmittance.size() - 1);
   size_t i = std::min(size_t(x), m.coatTransmittance.size() - 2);
   float t = x - float(i);
   return m.coatTransmittance[i] * (1 - t) + m.coatTransmittance[i + 1] * t;
 }
+
+namespace {
 
 // Diffuse base of (rough)plastic under a dielectric coat (Mitsuba's plastic model).
 Color plasticDiffuse(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
@@ -324,6 +328,7 @@ Color bsdfEval(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
     return bsdfEval(m.blendParts[0], c.part(0), wi, wo) * partWeight(c, 0) +
            bsdfEval(m.blendParts[1], c.part(1), wi, wo) * partWeight(c, 1);
   if (m.kind == BsdfKind::RoughDielectric) return evalRoughDielectric(m, c, wi, wo);
+  if (m.isCoating()) return coatingEval(m, c, wi, wo);
   float flip = sideFlip(m, wi);
   if (flip == 0 || isTransmissive(m.kind)) return Color(0.0f);
   return evalFront(m, c, flipZ(wi, flip), flipZ(wo, flip));
@@ -334,6 +339,7 @@ float bsdfPdf(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo) {
     return bsdfPdf(m.blendParts[0], c.part(0), wi, wo) * partWeight(c, 0) +
            bsdfPdf(m.blendParts[1], c.part(1), wi, wo) * partWeight(c, 1);
   if (m.kind == BsdfKind::RoughDielectric) return pdfRoughDielectric(m, wi, wo);
+  if (m.isCoating()) return coatingPdf(m, c, wi, wo);
   float flip = sideFlip(m, wi);
   if (flip == 0 || isTransmissive(m.kind)) return 0.0f;
   return pdfFront(m, flipZ(wi, flip), flipZ(wo, flip));
@@ -346,6 +352,7 @@ bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wiWorldSide, flo
   if (m.kind == BsdfKind::Dielectric) return sampleDielectric(m, c, wiWorldSide, u1, s);
   if (m.kind == BsdfKind::ThinDielectric) return sampleThinDielectric(m, c, wiWorldSide, u1, s);
   if (m.kind == BsdfKind::RoughDielectric) return sampleRoughDielectric(m, c, wiWorldSide, u1, u2, u3, s);
+  if (m.isCoating()) return coatingSample(m, c, wiWorldSide, u1, u2, u3, s);
   float flip = sideFlip(m, wiWorldSide);
   if (flip == 0) return false;
   Vec3 wi = flipZ(wiWorldSide, flip);
@@ -450,6 +457,9 @@ bool bsdfDeltaLobe(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo, 
       }
       return probability > 0;
     }
+    case BsdfKind::Coating:
+    case BsdfKind::RoughCoating:
+      return coatingDeltaLobe(m, c, wi, wo, value, probability);
     default:
       return false;
   }
@@ -516,11 +526,19 @@ void finalizeMaterial(Material& m) {
     float d = luminance(m.reflectance.value), s = luminance(m.specularReflectance.value);
     m.specularSamplingWeight = d + s > 0 ? s / (d + s) : 0.5f;
   }
-  if (m.kind == BsdfKind::RoughPlastic) {
+  if (m.isCoating()) {
+    // Mitsuba 0.6: the top's share of samples grows as absorption dims the inside.
+    const Color s = m.sigmaA.value * (-2 * m.thickness);
+    const float inside = (std::exp(s.x) + std::exp(s.y) + std::exp(s.z)) / 3;
+    m.specularSamplingWeight = 1 / (inside + 1);
+  }
+  if (m.kind == BsdfKind::RoughPlastic || m.kind == BsdfKind::RoughCoating) {
     const int size = 65;
     m.coatTransmittance.resize(size);
     for (int i = 0; i < size; ++i)
       m.coatTransmittance[i] = std::clamp(1.0f - roughCoatAlbedo(m, std::max(1e-3f, float(i) / (size - 1))), 0.0f, 1.0f);
+  }
+  if (m.kind == BsdfKind::RoughPlastic) {
     // Light bouncing inside the coat returns to the base with the hemispherical average of
     // the same transmittance; 1 - Fdr_int = (1 - Fdr_ext) / eta^2 keeps a white base at
     // albedo 1 (the identity holds exactly for the smooth coat).

@@ -3,7 +3,11 @@
 #include "referenced_file.h"
 
 #include <cctype>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
+
+#include "erpt/blackbody.h"
 
 namespace erpt::xml {
 
@@ -170,9 +174,8 @@ Properties SceneBuilder::readProperties(const Document& doc, const pugi::xml_nod
       p.texture = textureIds_.at(attribute(doc, child, "id"));
       props.set(name, p);
     } else if (tag == "blackbody") {
-      scene_.warnings.add(where, "<blackbody> is not supported; using white (1, 1, 1)");
-      p.tag = "rgb";
-      p.value = "1";
+      if (!named) throw InputError(where, "<blackbody> needs the attribute 'name'");
+      p.value = blackbodyValue(doc, child);
       props.set(name, p);
     } else if (children) {
       children->push_back(child);
@@ -181,6 +184,24 @@ Properties SceneBuilder::readProperties(const Document& doc, const pugi::xml_nod
     }
   }
   return props;
+}
+
+// Mitsuba 0.6's <blackbody temperature="3500K" scale="..."/>: its linear sRGB colour
+// (blackbody.h), written out as the numbers an <rgb> would hold.
+std::string SceneBuilder::blackbodyValue(const Document& doc, const pugi::xml_node& node) {
+  const SourceLocation where = doc.where(node);
+  std::string temperature = attribute(doc, node, "temperature");
+  while (!temperature.empty() && std::isspace(static_cast<unsigned char>(temperature.back()))) temperature.pop_back();
+  if (!temperature.empty() && (temperature.back() == 'K' || temperature.back() == 'k')) temperature.pop_back();
+  const double kelvin = parseNumber(temperature, where, "the blackbody temperature");
+  if (!(kelvin > 0 && kelvin < 1e6)) throw InputError(where, "blackbody temperature must be in (0, 1e6) kelvin");
+  const std::string scaleText = attribute(doc, node, "scale", false);
+  const double scale = scaleText.empty() ? 1.0 : parseNumber(scaleText, where, "the blackbody scale");
+  if (!std::isfinite(scale)) throw InputError(where, "blackbody scale must be finite");
+  const Color rgb = blackbodyLinearRgb(kelvin) * float(scale);
+  char text[96];
+  std::snprintf(text, sizeof text, "%.9g, %.9g, %.9g", double(rgb.x), double(rgb.y), double(rgb.z));
+  return text;
 }
 
 Transform SceneBuilder::readTransform(const Document& doc, const pugi::xml_node& node) {

@@ -50,7 +50,8 @@ class SceneBuilder {
   int emitter(const Document& doc, const pugi::xml_node& node, int shape);
   // A one-line warning when a mask's opacity is partial (neither ~0 nor ~1) anywhere it matters.
   void warnPartialOpacity(const ColorParam& opacity, const SourceLocation& where);
-  int shadingMapTexture(const Document& doc, const Properties& props, const std::vector<pugi::xml_node>& children);
+  // The texture a plugin wraps (normalmap, bumpmap, scale): named or nested, by value or <ref>; -1: none.
+  int nestedTexture(const Document& doc, const Properties& props, const std::vector<pugi::xml_node>& children);
   // An `envmap`'s image, read, decoded and turned into the sampling tables.
   std::shared_ptr<const EnvironmentMap> environmentMap(const Document& doc, Properties& props, const SourceLocation& where);
   // `sky`, `sun` and `sunsky` (xml_daylight.cpp): adds the environment emitter they are drawn
@@ -65,6 +66,7 @@ class SceneBuilder {
                             std::vector<pugi::xml_node>* children = nullptr);
   Transform readTransform(const Document& doc, const pugi::xml_node& node);
   static Transform composedToWorld(const Properties& props, const Transform* parent, const SourceLocation& where);
+  std::string blackbodyValue(const Document& doc, const pugi::xml_node& node);
   std::string attribute(const Document& doc, const pugi::xml_node& node, const char* name, bool required = true);
   // A referenced file's path, relative to the document. When it does not exist but a file
   // whose path differs only in letter case does (a scene made on Windows or macOS), that one,

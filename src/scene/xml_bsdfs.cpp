@@ -18,7 +18,8 @@ MicrofacetKind readDistribution(const Properties& props, Warnings& warnings) {
 }
 
 // The roughness of `m` from alpha, or alpha_u and alpha_v (anisotropic: roughconductor and
-// roughdielectric, as in Mitsuba; roughplastic is isotropic there too: it gets their mean).
+// roughdielectric, as in Mitsuba; roughplastic and roughcoating are isotropic there: they get
+// their mean).
 void readAlpha(const Properties& props, Warnings& warnings, Material& m) {
   auto checked = [&](const char* name, float a) {
     if (!(a > 0 && a <= 4)) throw InputError(props.find(name) ? props.find(name)->where : props.where(),
@@ -30,8 +31,9 @@ void readAlpha(const Properties& props, Warnings& warnings, Material& m) {
   if (!props.has("alpha_u") && !props.has("alpha_v")) return;
   const float au = checked("alpha_u", props.getFloat("alpha_u", m.alpha));
   const float av = checked("alpha_v", props.getFloat("alpha_v", m.alpha));
-  if (m.kind == BsdfKind::RoughPlastic) {
-    warnings.add(props.where(), "roughplastic is isotropic; using alpha = (alpha_u + alpha_v) / 2");
+  if (m.kind == BsdfKind::RoughPlastic || m.kind == BsdfKind::RoughCoating) {
+    const char* type = m.kind == BsdfKind::RoughPlastic ? "roughplastic" : "roughcoating";
+    warnings.add(props.where(), std::string(type) + " is isotropic; using alpha = (alpha_u + alpha_v) / 2");
     m.alpha = 0.5f * (au + av);
     return;
   }
@@ -110,6 +112,11 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
         Material first = part.blendParts[0];
         part = first;
       }
+      if (part.isCoating()) {
+        w.add(doc.where(c), "a coating inside a blendbsdf is not supported; using the coating's nested BSDF");
+        Material under = part.coated[0];
+        part = under;
+      }
       // Cut-outs and shading maps act on the whole surface: only the outermost wrapper's count.
       if (part.masked || part.shadingMap != ShadingMap::None)
         w.add(doc.where(c), "a mask, normalmap or bumpmap inside a blendbsdf is ignored; wrap the blendbsdf instead");
@@ -132,7 +139,7 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
       throw InputError(props.find("weight")->where, "blendbsdf weight must be in [0, 1]");
   } else if (type == "normalmap" || type == "bumpmap") {
     m = wrapped();
-    const int map = shadingMapTexture(doc, props, children);
+    const int map = nestedTexture(doc, props, children);
     if (map < 0) throw InputError(doc.where(node), type + " needs a <texture> (the " +
                                                        (type == "normalmap" ? "normals" : "heights") + ")");
     m.shadingMap = type == "normalmap" ? ShadingMap::Normal : ShadingMap::Bump;
@@ -147,6 +154,12 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
       throw InputError(props.find("material")->where, "unknown conductor material '" + metal + "'");
     m.eta = props.getColor("eta", m.eta);
     m.k = props.getColor("k", m.k);
+    // The medium outside the metal (Mitsuba 0.6's `ext_eta`, air by default, a number or a
+    // name): the Fresnel terms depend on eta and k relative to it. Mitsuba 3 has no exterior
+    // index (1); a scene that gives one is followed.
+    const float outside = props.getIOR("ext_eta", majorVersion_ == 0 ? 1.000277f : 1.0f);
+    m.eta = m.eta / outside;
+    m.k = m.k / outside;
     m.specularReflectance = props.getColorParam("specular_reflectance", Color(1.0f), scene_);
     if (m.kind == BsdfKind::RoughConductor) {
       readAlpha(props, w, m);
@@ -172,6 +185,35 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     m.specularReflectance = props.getColorParam("specular_reflectance", Color(1.0f), scene_);
     m.nonlinear = props.getBool("nonlinear", false);
     if (m.kind == BsdfKind::RoughPlastic) {
+      readAlpha(props, w, m);
+      m.distribution = readDistribution(props, w);
+    }
+  } else if (type == "coating" || type == "roughcoating") {
+    const int inner = nested();
+    if (inner < 0) throw InputError(doc.where(node), type + " needs a nested <bsdf>");
+    const Material& under = scene_.materials[size_t(inner)];
+    const bool transmits = under.kind == BsdfKind::Dielectric || under.kind == BsdfKind::ThinDielectric ||
+                           under.kind == BsdfKind::RoughDielectric;
+    std::string unsupported;
+    if (transmits) unsupported = "a coating over a transmissive BSDF";
+    else if (under.kind == BsdfKind::Blend) unsupported = "a coating over a blendbsdf";
+    else if (under.isCoating()) unsupported = "a coating over a coating";
+    else if (under.masked || under.shadingMap != ShadingMap::None) unsupported = "a coating over a mask, normalmap or bumpmap";
+    if (!unsupported.empty()) {
+      w.add(doc.where(node), unsupported + " is not supported; using the nested BSDF alone (no layer)");
+      if (!id.empty()) materialIds_[id] = inner;
+      return inner;
+    }
+    m.kind = type == "coating" ? BsdfKind::Coating : BsdfKind::RoughCoating;
+    m.coated = {under};
+    m.intIOR = props.getIOR("int_ior", 1.5046f);  // bk7, Mitsuba's default
+    m.extIOR = props.getIOR("ext_ior", 1.000277f);
+    m.thickness = props.getFloat("thickness", 1.0f);
+    if (!(m.thickness >= 0 && std::isfinite(m.thickness)))
+      throw InputError(props.find("thickness")->where, type + " thickness must be finite and not negative");
+    m.sigmaA = props.getColorParam("sigma_a", Color(0.0f), scene_);
+    m.specularReflectance = props.getColorParam("specular_reflectance", Color(1.0f), scene_);
+    if (m.kind == BsdfKind::RoughCoating) {
       readAlpha(props, w, m);
       m.distribution = readDistribution(props, w);
     }
@@ -202,7 +244,7 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     props = Properties(props.plugin(), props.where());  // its parameters mean nothing to diffuse
   }
   // Scenes written for rough variants (or other renderers) give smooth BSDFs a roughness.
-  if ((type == "dielectric" || type == "thindielectric" || type == "conductor" || type == "plastic") &&
+  if ((type == "dielectric" || type == "thindielectric" || type == "conductor" || type == "plastic" || type == "coating") &&
       (props.has("alpha") || props.has("alpha_u") || props.has("alpha_v"))) {
     const std::string name = props.has("alpha") ? "alpha" : props.has("alpha_u") ? "alpha_u" : "alpha_v";
     const Property* a = props.find(name);
@@ -220,10 +262,11 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
   return index;
 }
 
-// The texture of a normalmap / bumpmap: Mitsuba 3 names it (`normalmap`, or anything for a
-// bumpmap), Mitsuba 0.6 nests it unnamed; by value or by <ref>.
-int SceneBuilder::shadingMapTexture(const Document& doc, const Properties& props,
-                                    const std::vector<pugi::xml_node>& children) {
+// The texture inside a normalmap, bumpmap or scale texture: Mitsuba 3 names it (`normalmap`,
+// or anything), Mitsuba 0.6 nests it unnamed; by value or by <ref> (Mitsuba takes a reference
+// wherever it takes a texture).
+int SceneBuilder::nestedTexture(const Document& doc, const Properties& props,
+                                const std::vector<pugi::xml_node>& children) {
   if (const Property* p = props.findTag("texture")) return p->texture;
   for (const pugi::xml_node& c : children) {
     const std::string tag = c.name();
@@ -280,14 +323,24 @@ int SceneBuilder::texture(const Document& doc, const pugi::xml_node& node) {
     for (const char* ignored : {"filter_type", "wrap_mode", "gamma"}) props.find(ignored);
   } else if (type == "scale") {
     // A texture times a constant (Mitsuba 0.6's way of scaling a bump map's heights): baked.
-    const Property* inner = props.findTag("texture");
-    int nestedTexture = inner ? inner->texture : -1;
-    for (const pugi::xml_node& c : children)
-      if (nestedTexture < 0 && std::string(c.name()) == "texture") nestedTexture = texture(doc, c);
-    if (nestedTexture < 0) throw InputError(doc.where(node), "scale texture needs a nested <texture>");
-    const float factor = props.getFloat("scale", 1.0f);
-    if (!std::isfinite(factor)) throw InputError(props.find("scale")->where, "texture scale must be finite");
-    t = scene_.textures[size_t(nestedTexture)];
+    // As in Mitsuba 0.6, the scaled thing may also be a constant `value`, and the scale a colour.
+    int inner = nestedTexture(doc, props, children);
+    if (inner < 0 && props.has("value")) {
+      Texture constant;
+      constant.color0 = constant.color1 = props.getColor("value", Color(1.0f));
+      inner = int(scene_.textures.size());
+      scene_.textures.push_back(constant);
+    }
+    if (inner < 0) {
+      for (const pugi::xml_node& c : children)
+        if (std::string(c.name()) == "ref")
+          throw InputError(doc.where(c), "reference to unknown texture id '" + attribute(doc, c, "id") + "'");
+      throw InputError(doc.where(node), "scale texture needs a nested <texture> (or a <ref> to one)");
+    }
+    const Color factor = props.getColor("scale", Color(1.0f));
+    if (!(std::isfinite(factor.x) && std::isfinite(factor.y) && std::isfinite(factor.z)))
+      throw InputError(props.find("scale")->where, "texture scale must be finite");
+    t = scene_.textures[size_t(inner)];
     for (Color& c : t.texels) c = c * factor;
     t.color0 = t.color0 * factor;
     t.color1 = t.color1 * factor;

@@ -176,7 +176,7 @@ Color parseColorValue(const Property& p) {
     if (samples.empty()) throw InputError(p.where, "empty spectrum");
     return spectrumToRgb(samples);
   }
-  if (p.tag == "rgb" || p.tag == "spectrum" || p.tag == "float" || p.tag == "integer")
+  if (p.tag == "rgb" || p.tag == "spectrum" || p.tag == "float" || p.tag == "integer" || p.tag == "blackbody")
     return parseVector(p.value, p.where, what);
   throw InputError(p.where, "expected a colour (<rgb>, <srgb>, <spectrum>), got <" + p.tag + ">");
 }

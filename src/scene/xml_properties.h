@@ -11,7 +11,8 @@
 namespace erpt::xml {
 
 struct Property {
-  std::string tag;    // float, integer, boolean, string, rgb, srgb, spectrum, point, vector, transform, texture
+  std::string tag;    // float, integer, boolean, string, rgb, srgb, spectrum, blackbody, point, vector, transform, texture
+  // (a blackbody's value is its linear RGB, computed when read)
   std::string value;  // after $-substitution
   SourceLocation where;
   Transform transform;  // tag == "transform"

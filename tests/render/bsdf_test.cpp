@@ -163,6 +163,28 @@ Material blend(const Material& a, const Material& b, float weight) {
   return finalized(m);
 }
 
+// coating (smooth) or roughcoating over `under`: an IOR 1.5 layer in air, absorption sigmaA
+// over a thickness of 1.
+Material coating(const Material& under, Color sigmaA = Color(0.0f), bool twoSided = false) {
+  Material m;
+  m.kind = BsdfKind::Coating;
+  m.coated = {under};
+  m.intIOR = 1.5f;
+  m.extIOR = 1.0f;
+  m.sigmaA.value = sigmaA;
+  m.specularReflectance.value = Color(1.0f);
+  m.twoSided = twoSided;
+  return finalized(m);  // the top's sampling weight
+}
+
+Material roughCoating(const Material& under, MicrofacetKind dist, float alpha, Color sigmaA = Color(0.0f)) {
+  Material m = coating(under, sigmaA);
+  m.kind = BsdfKind::RoughCoating;
+  m.distribution = dist;
+  m.alpha = alpha;
+  return finalized(m);  // tabulates the rough top's transmittance
+}
+
 bool closeRelative(double a, double b, double relTol, double absTol = 1e-7) {
   return std::abs(a - b) <= relTol * std::max(std::abs(a), std::abs(b)) + absTol;
 }
@@ -298,6 +320,28 @@ std::vector<SamplingCase> samplingCases() {
                    },
                    direction(40.0f), 48, 24});
 
+  // coating: the top's mirror is Dirac (missing mass), the coated BSDF is seen through the
+  // layer's refraction (its lobe compressed towards the normal); roughcoating adds the rough
+  // top's lobe. Over a smooth conductor a roughcoating's only density is its top.
+  for (float theta : {20.0f, 70.0f}) {
+    cases.push_back({"CoatingDiffuse_wi" + numberTag(theta), [] { return coating(diffuse()); }, direction(theta)});
+    cases.push_back({"CoatingRoughConductor_GGX_a0p3_wi" + numberTag(theta),
+                     [] { return coating(roughConductor(MicrofacetKind::GGX, 0.3f)); }, direction(theta), 96});
+    cases.push_back({"CoatingAbsorbingDiffuse_wi" + numberTag(theta),
+                     [] { return coating(diffuse(Color(0.8f)), Color(0.5f, 0.2f, 0.05f)); }, direction(theta)});
+    for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX})
+      cases.push_back({std::string("RoughCoatingDiffuse_") + distributionName(dist) + "_a0p2_wi" + numberTag(theta),
+                       [=] { return roughCoating(diffuse(), dist, 0.2f); }, direction(theta), 96});
+    cases.push_back({"RoughCoatingRoughConductor_Beckmann_a0p4_wi" + numberTag(theta),
+                     [] { return roughCoating(roughConductor(MicrofacetKind::Beckmann, 0.15f), MicrofacetKind::Beckmann, 0.4f); },
+                     direction(theta), 96});
+    // (Absorption inside steers samples to the top: enough non-Dirac ones to check.)
+    cases.push_back({"RoughCoatingConductor_GGX_a0p3_wi" + numberTag(theta),
+                     [] { return roughCoating(conductor(kGoldEta, kGoldK), MicrofacetKind::GGX, 0.3f, Color(1.0f)); },
+                     direction(theta)});
+  }
+  cases.push_back({"TwoSidedCoatingDiffuseBack_wi140", [] { return coating(diffuse(), Color(0.0f), true); }, direction(140.0f)});
+
   // Two-sided materials hit from the back: everything must happen in the lower hemisphere.
   for (float theta : {120.0f, 170.0f})
     cases.push_back({"TwoSidedDiffuseBack_wi" + numberTag(theta), [] { return diffuse(Color(0.5f), true); }, direction(theta)});
@@ -390,7 +434,14 @@ std::vector<NamedMaterial> nonDeltaMaterials() {
                                    {"ward-duer", ward(WardVariant::WardDuer, 0.2f, 0.2f)},
                                    {"ward balanced", ward(WardVariant::Balanced, 0.3f, 0.1f)},
                                    {"anisotropic Beckmann 0.4 x 0.15", anisotropicConductor(MicrofacetKind::Beckmann, 0.4f, 0.15f)},
-                                   {"blend plastic + phong", blend(plastic(), phong(40.0f), 0.7f)}};
+                                   {"blend plastic + phong", blend(plastic(), phong(40.0f), 0.7f)},
+                                   {"coating over diffuse", coating(diffuse())},
+                                   {"coating over roughconductor", coating(roughConductor(MicrofacetKind::GGX, 0.3f))},
+                                   {"absorbing coating over phong", coating(phong(20.0f), Color(0.3f, 0.1f, 0.6f))},
+                                   {"twosided coating over diffuse (back)", coating(diffuse(), Color(0.0f), true), true},
+                                   {"roughcoating over diffuse", roughCoating(diffuse(), MicrofacetKind::Beckmann, 0.2f)},
+                                   {"roughcoating over roughplastic",
+                                    roughCoating(roughPlastic(MicrofacetKind::GGX, 0.2f), MicrofacetKind::GGX, 0.4f)}};
   for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX}) {
     for (float alpha : {0.1f, 0.3f, 0.7f}) {
       std::string tag = std::string(distributionName(dist)) + " alpha " + numberTag(alpha);
@@ -523,6 +574,13 @@ TEST(BsdfEnergy, WhiteMaterialsReflectAtMostAllEnergy) {
       {"phong n 100, 0.2 + 0.8", phong(100.0f, Color(0.2f), Color(0.8f))},
       {"blend diffuse + mirror", blend(diffuse(white), conductor(Color(0.0f), Color(1.0f)), 0.4f)},
       {"blend dielectric + plastic", blend(dielectric(), plastic(white), 0.5f)},
+      {"coating over diffuse", coating(diffuse(white))},
+      {"coating over mirror", coating(conductor(Color(0.0f), Color(1.0f)))},
+      {"coating over roughconductor", coating(roughConductor(MicrofacetKind::GGX, 0.3f, Color(0.0f), Color(1.0f)))},
+      {"roughcoating over diffuse", roughCoating(diffuse(white), MicrofacetKind::GGX, 0.3f)},
+      {"roughcoating over mirror", roughCoating(conductor(Color(0.0f), Color(1.0f)), MicrofacetKind::Beckmann, 0.1f)},
+      {"roughcoating over roughconductor",
+       roughCoating(roughConductor(MicrofacetKind::Beckmann, 0.5f, Color(0.0f), Color(1.0f)), MicrofacetKind::GGX, 0.6f)},
   };
   for (MicrofacetKind dist : {MicrofacetKind::Beckmann, MicrofacetKind::GGX})
     for (float alpha : {0.1f, 0.3f, 0.7f})
@@ -843,6 +901,9 @@ TEST(BsdfDelta, DeltaLobeIsZeroOffItsDirection) {
                         {"blend diffuse + conductor", blend(diffuse(), conductor(kGoldEta, kGoldK), 0.3f), true},
                         {"blend diffuse + dielectric refraction", blend(diffuse(), dielectric(1.5f, 1.0f), 0.6f), false},
                         {"plastic coat", plastic(), true},
+                        {"coating top over diffuse", coating(diffuse()), true},
+                        {"coating over conductor", coating(conductor(kGoldEta, kGoldK)), true},
+                        {"roughcoating over conductor", roughCoating(conductor(kGoldEta, kGoldK), MicrofacetKind::GGX, 0.3f), true},
                         {"dielectric reflection", dielectric(1.5f, 1.0f), true},
                         {"dielectric refraction", dielectric(1.5f, 1.0f), false},
                         {"thin dielectric transmission", dielectric(1.5f, 1.0f, BsdfKind::ThinDielectric), false}};
