@@ -12,6 +12,9 @@ struct ImageComparison {
   double relMse = 0;       // mean over pixels and channels of (x - r)^2 / (r^2 + 0.01)
   Color mean, referenceMean;
   size_t nonFinite = 0;    // pixels of the image with a NaN or Inf channel (left out of the sums)
+  // Pixels exactly black (all channels 0) in the image and in the reference where the
+  // reference is not: light transport the sampler did not find there at all.
+  size_t black = 0, blackWhereReferenceIsNot = 0;
 };
 
 Color meanOf(const RgbImage& img);

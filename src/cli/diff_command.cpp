@@ -33,6 +33,9 @@ int runDiff(const DiffArgs& a) {
   auto ratio = [](float a, float b) { return b != 0 ? double(a) / double(b) : 0.0; };
   std::printf("mean_ratio %.6f %.6f %.6f\nnonfinite_pixels %zu\n", ratio(c.mean.x, c.referenceMean.x),
               ratio(c.mean.y, c.referenceMean.y), ratio(c.mean.z, c.referenceMean.z), c.nonFinite);
+  const double pixels = double(image.pixels.size());
+  std::printf("black_pixels %zu (%.2f%%), %zu where the reference is not black (%.2f%%)\n", c.black,
+              100.0 * double(c.black) / pixels, c.blackWhereReferenceIsNot, 100.0 * double(c.blackWhereReferenceIsNot) / pixels);
   if (!a.heatmap.empty())
     std::printf("heatmap %s (per-pixel relative squared error, log scale %g dark to %g bright; cyan: non-finite)\n",
                 a.heatmap.c_str(), kHeatmapLow, kHeatmapHigh);

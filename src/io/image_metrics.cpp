@@ -55,6 +55,10 @@ ImageComparison compareImages(const RgbImage& img, const RgbImage& reference) {
       ++out.nonFinite;
       continue;
     }
+    if (isBlack(img.pixels[i])) {
+      ++out.black;
+      out.blackWhereReferenceIsNot += !isBlack(ref.pixels[i]);
+    }
     for (int c = 0; c < 3; ++c) {
       const double x = img.pixels[i][c], r = ref.pixels[i][c], d2 = (x - r) * (x - r);
       se += d2;

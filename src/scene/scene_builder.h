@@ -23,6 +23,7 @@ class SceneBuilder {
   // The <scene> element of the file loadFile was first given: where problems of the scene as
   // a whole (nothing to render) are reported.
   const SourceLocation& sceneElement() const { return sceneElement_; }
+  const Defines& defines() const { return defines_; }
 
  private:
   friend struct ElementReader;

@@ -41,6 +41,7 @@ std::string Defines::substitute(const std::string& text, const SourceLocation& w
     while (j < text.size() && (std::isalnum((unsigned char)text[j]) || text[j] == '_')) ++j;
     std::string name = text.substr(i + 1, j - i - 1);
     auto found = values_.find(name);
+    used_.insert(name);
     if (name.empty() || found == values_.end())
       throw InputError(where, "undefined parameter '$" + name + "' (add <default name=\"" + name +
                                   "\" .../> or pass -D " + name + "=VALUE)");

@@ -4,6 +4,7 @@
 
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -33,12 +34,26 @@ class Document {
 // Values of <default> elements and -D overrides, and `$name` substitution.
 class Defines {
  public:
-  explicit Defines(std::map<std::string, std::string> overrides) : values_(std::move(overrides)) {}
-  void addDefault(const std::string& name, const std::string& value) { values_.emplace(name, value); }
+  explicit Defines(std::map<std::string, std::string> overrides) : values_(std::move(overrides)) {
+    for (const auto& [name, value] : values_) overrides_.insert(name);
+  }
+  void addDefault(const std::string& name, const std::string& value) {
+    values_.emplace(name, value);
+    declared_.insert(name);
+  }
   std::string substitute(const std::string& text, const SourceLocation& where) const;
+  // An override (-D) the scene neither declares with <default> nor uses as $name: a typo the
+  // render would otherwise ignore. "" if there is none.
+  std::string unusedOverride() const {
+    for (const std::string& name : overrides_)
+      if (!declared_.count(name) && !used_.count(name)) return name;
+    return "";
+  }
 
  private:
   std::map<std::string, std::string> values_;
+  std::set<std::string> overrides_, declared_;
+  mutable std::set<std::string> used_;
 };
 
 // Strict conversions: the whole string must be a finite number, else InputError.

@@ -405,6 +405,10 @@ Scene loadScene(const std::string& path, const LoadOptions& options) {
   xml::SceneBuilder builder(scene, options);
   builder.loadFile(path, 0);
   const SourceLocation sceneElement = builder.sceneElement();
+  const std::string unused = builder.defines().unusedOverride();
+  if (!unused.empty())
+    throw UsageError("-D " + unused + "=" + options.defines.at(unused) + ": " + path + " has no parameter '" + unused +
+                     "' (no <default name=\"" + unused + "\"> and no $" + unused + ")");
   for (const Material& m : scene.materials) scene.adjustsShadingFrames |= m.adjustsShadingFrame();
   // Instanced triangles take the primitive ids after the world's own, instance by instance.
   uint64_t next = scene.worldPrimitiveCount();

@@ -94,9 +94,12 @@ constexpr int kSlowdown = 1;
 
 std::vector<std::string> renderArgs(const std::string& scene, const std::string& integrator, int spp,
                                     const std::string& out, const std::string& ckpt) {
-  return {"render", "-q", scene, "--width", "128", "--height", "128", "--spp", std::to_string(spp),
-          "--integrator", integrator, "--mutations-per-pixel", "50", "--chain-length", "20", "--direct-samples", "4",
-          "-o", out, "--checkpoint", ckpt, "--checkpoint-every", "0"};
+  std::vector<std::string> args{"render", "-q", scene, "--width", "128", "--height", "128", "--spp", std::to_string(spp),
+                                "--integrator", integrator};
+  if (integrator == "erpt")  // options the other integrators refuse
+    args.insert(args.end(), {"--mutations-per-pixel", "50", "--chain-length", "20", "--direct-samples", "4"});
+  args.insert(args.end(), {"-o", out, "--checkpoint", ckpt, "--checkpoint-every", "0"});
+  return args;
 }
 
 std::string shellArgs(const std::vector<std::string>& args) {

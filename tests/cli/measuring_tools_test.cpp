@@ -59,6 +59,17 @@ std::vector<double> valuesOf(const std::string& output, const std::string& key) 
   return {};
 }
 
+// Black pixels: exactly (0, 0, 0), counted alone and where the reference has light.
+TEST(DiffCli, CountsBlackPixels) {
+  test::TempDir dir;
+  writeImageAtomic(dir.file("a.exr"), row({Color(0.0f), Color(0.2f), Color(0.0f), Color(0, 0, 1e-30f)}));
+  writeImageAtomic(dir.file("r.exr"), row({Color(0.0f), Color(0.2f), Color(0.1f), Color(0.1f)}));
+  const test::CommandResult r = test::runCli("diff " + dir.file("a.exr") + " " + dir.file("r.exr"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("black_pixels 2 (50.00%), 1 where the reference is not black (25.00%)"), std::string::npos)
+      << r.output;
+}
+
 // Hand-computed: image (1, .5, 0), (.2, .2, .2), (NaN, 0, 0) against reference (.5, .5, .1),
 // (.2, .1, .3), (.35, .3, .2). The NaN pixel is counted and left out; squared differences
 // .25, 0, .01, 0, .01, .01 give MSE .28 / 6; relative ones .25/.26 + .01/.02 + .01/.02 + .01/.1

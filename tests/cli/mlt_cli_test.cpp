@@ -49,7 +49,7 @@ TEST(MltCli, RefusesOptionsItDoesNotTake) {
   } cases[] = {
       {"--large-step-prob 1.5", "--large-step-prob"},
       {"--chains 0", "--chains"},
-      {"--pm-filter", "noise filters"},
+      {"--pm-filter", "--pm-filter does not apply to --integrator mlt"},
       {"--flow detailed-balance", "--flow"},
       {"--checkpoint " , "checkpoint"},
   };

@@ -46,6 +46,6 @@ void traceCameraRays(const erpt::Scene& scene) {
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string path = erpt::fuzz::writeInput("scene.xml", data, size);
-  erpt::fuzz::expectCleanFailure([&] { traceCameraRays(erpt::loadScene(path)); });
+  erpt::fuzz::expectCleanFailure([&] { traceCameraRays(erpt::loadScene(path)); }, erpt::fuzz::Place::Line);
   return 0;
 }

@@ -49,14 +49,7 @@ std::string sphereWith(const std::string& property) {
 
 const char* const kTriangleObj = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";  // faces start on line 4
 
-const char* const kAsciiPlyHeader =
-    "ply\n"
-    "format ascii 1.0\n"
-    "element vertex 3\n"
-    "property float x\nproperty float y\nproperty float z\n"
-    "element face 1\n"
-    "property list uchar int vertex_indices\n"
-    "end_header\n";  // line 9; the body starts on line 10
+const char* const kAsciiPlyHeader = test::kAsciiTrianglePlyHeader;  // the body starts on line 10
 
 // A binary PLY triangle whose face lists `indices` (count first, as uchar; items as int32).
 std::string binaryPly(const std::vector<int32_t>& indices, int faces = 1) {

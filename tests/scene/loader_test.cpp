@@ -41,6 +41,20 @@ TEST(Loader, SharedCornellBox) {
   EXPECT_NEAR(floor.reflectance.value.x, 0.725f, 1e-6f);
 }
 
+// A -D the scene never declares or uses is a typo the render would silently ignore: refused,
+// naming the parameter.
+TEST(Loader, DefineTheSceneDoesNotHaveIsRefused) {
+  LoadOptions o;
+  o.defines = {{"spp", "7"}, {"resz", "32"}};
+  try {
+    loadScene(test::sharedScenesDir() + "/cornell-box/scene.xml", o);
+    FAIL() << "-D resz was accepted";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("-D resz=32: "), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no parameter 'resz'"), std::string::npos) << e.what();
+  }
+}
+
 TEST(Loader, DefinesOverrideDefaults) {
   LoadOptions o;
   o.defines = {{"spp", "7"}, {"resx", "32"}, {"resy", "16"}};

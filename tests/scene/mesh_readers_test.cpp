@@ -216,14 +216,7 @@ TEST_F(MeshReadersTest, PlyBinaryTruncated) {
   expectInputError([&] { readPly(path, warnings_); }, path, "unexpected end of file");
 }
 
-const char* kTriangleHeader =
-    "ply\n"
-    "format ascii 1.0\n"
-    "element vertex 3\n"
-    "property float x\nproperty float y\nproperty float z\n"
-    "element face 1\n"
-    "property list uchar int vertex_indices\n"
-    "end_header\n";  // line 9; the body starts on line 10
+const char* kTriangleHeader = test::kAsciiTrianglePlyHeader;  // the body starts on line 10
 
 TEST_F(MeshReadersTest, PlyAsciiTruncated) {
   std::string path = write("cut.ply", std::string(kTriangleHeader) + "0 0 0\n1 0 0\n0 1\n");

@@ -10,6 +10,16 @@
 
 namespace erpt::test {
 
+// The header of an ASCII PLY triangle (3 vertices x y z, 1 face); the body starts on line 10.
+inline const char* const kAsciiTrianglePlyHeader =
+    "ply\n"
+    "format ascii 1.0\n"
+    "element vertex 3\n"
+    "property float x\nproperty float y\nproperty float z\n"
+    "element face 1\n"
+    "property list uchar int vertex_indices\n"
+    "end_header\n";
+
 // Appends values to a byte string in a chosen byte order, independent of the host's.
 struct ByteWriter {
   bool bigEndian = false;
