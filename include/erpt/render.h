@@ -110,8 +110,6 @@ struct RenderStats {
 
 // Settings with the scene's values filled in where the caller left them open.
 RenderSettings resolveSettings(const Scene& scene, RenderSettings settings);
-// Names of the integrators render() knows.
-const char* integratorNames();
 // Throws UsageError for an unknown integrator.
 //
 // With a time budget the integrator runs in passes, each an independent render with its own

@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "option_scope.h"
 #include "erpt/error.h"
+#include "erpt/integrators.h"
 #include "erpt/error_plots.h"
 #include "erpt/image_metrics.h"
 
@@ -61,8 +62,7 @@ IntegratorEntry parseEntry(const std::string& entry, const RenderArgs& common, c
   RenderArgs args = common;
   const size_t open = entry.find('[');
   args.integrator = entry.substr(0, open);
-  if (args.integrator != "path" && args.integrator != "erpt" && args.integrator != "pmc-er" && args.integrator != "mlt" &&
-      args.integrator != "direct")
+  if (!findIntegrator(args.integrator))
     throw UsageError("unknown integrator '" + args.integrator + "' in --integrators (available: " + integratorNames() + ")");
   if (open != std::string::npos) {
     if (entry.back() != ']') throw UsageError("--integrators entry '" + entry + "' must end with ']'");

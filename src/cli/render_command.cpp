@@ -6,6 +6,7 @@
 
 #include "commands.h"
 #include "erpt/error.h"
+#include "erpt/integrators.h"
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
 #include "option_scope.h"
@@ -111,14 +112,16 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
   CLI::App* cmd = app.add_subcommand("render", "Render a Mitsuba XML scene to a linear EXR and a tone-mapped PNG");
   cmd->add_option("scene", a.scene, "Scene file (Mitsuba 0.6 or 3 XML)")->required();
   cmd->add_option("-o,--output", a.output, "Output EXR path; the PNG is written beside it")->required();
-  cmd->add_option("--integrator", a.integrator, "Integrator: path (wavefront path tracer), erpt (energy redistribution path tracing), pmc-er (population Monte Carlo energy redistribution), mlt (Metropolis light transport on ERPT's mutations) or direct (direct lighting, for debugging); default: the scene's, if it is one of these, else path");
+  std::string integrators;
+  for (const IntegratorModule& m : integratorModules()) integrators += (integrators.empty() ? "" : "; ") + m.name + ": " + m.description;
+  cmd->add_option("--integrator", a.integrator, "Integrator (default: the scene's, if it is one of these, else path). " + integrators);
   cmd->add_option("--time", a.time, "Render for this many seconds instead of --spp samples per pixel (passes of growing spp; the image then depends on the machine's speed)")
       ->check(CLI::Range(1e-3, 1e7));
-  cmd->add_option("--checkpoint", a.checkpoint, "Write the render's state to FILE (atomically) every --checkpoint-every seconds and when it ends or is stopped; continue it with `erpt resume FILE` (path, direct, erpt)");
+  cmd->add_option("--checkpoint", a.checkpoint, "Write the render's state to FILE (atomically) every --checkpoint-every seconds and when it ends or is stopped; continue it with `erpt resume FILE` (path, direct, erpt, pmc-er)");
   cmd->add_option("--checkpoint-every", a.checkpointEvery, "Seconds between checkpoints (default 300; written at the end of a group of sample passes)")
       ->check(CLI::Range(0.0, 1e7));
   cmd->add_option("--display", a.display, "Stream the image as it converges to the tev viewer listening at HOST:PORT (tev's default: 127.0.0.1:14158)");
-  cmd->add_option("--write-partial", a.writePartial, "Write the image of the sample passes completed so far to the output every this many seconds (path, direct, erpt)")
+  cmd->add_option("--write-partial", a.writePartial, "Write the image of the sample passes completed so far to the output every this many seconds (path, direct, erpt, pmc-er)")
       ->check(CLI::Range(0.0, 1e7));
   addRenderOptions(cmd, a);
 }
@@ -193,9 +196,7 @@ static std::vector<float> parseRadii(const std::string& text) {
 RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
   if (a.maxDepth == 0) throw UsageError("--max-depth must be -1 (unbounded) or at least 1");
   RenderSettings s;
-  const bool sceneIntegratorKnown =
-      scene.integrator.type == "path" || scene.integrator.type == "direct" || scene.integrator.type == "erpt" ||
-      scene.integrator.type == "pmc-er" || scene.integrator.type == "mlt";
+  const bool sceneIntegratorKnown = findIntegrator(scene.integrator.type) != nullptr;
   s.integrator = !a.integrator.empty() ? a.integrator : sceneIntegratorKnown ? scene.integrator.type : "path";
   s.width = a.width;
   s.height = a.height;
@@ -257,6 +258,7 @@ int runRender(const RenderArgs& given) {
   if (!a.checkpoint.empty() && a.time > 0) throw UsageError("--checkpoint needs a fixed --spp, not --time");
   Scene scene = loadSceneFor(a);
   RenderSettings s = settingsFromArgs(a, scene);
+  integratorNamed(s.integrator);  // an unknown name first, before its options are judged
   checkOptionScope(a.given, {s.integrator});
   const bool longRender = !a.checkpoint.empty() || a.writePartial > 0 || a.resumeFrom || !a.display.empty();
   if (longRender && a.time > 0) throw UsageError("--write-partial and --display need a fixed --spp, not --time");

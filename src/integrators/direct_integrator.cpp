@@ -87,4 +87,14 @@ RgbImage renderDirect(const Scene& scene, const RenderSettings& settings, Render
   return renderInSamplePasses(settings, setup.order.size(), stats, passes);
 }
 
+IntegratorModule directModule() {
+  IntegratorModule m;
+  m.name = "direct";
+  m.description = "direct lighting only (next-event estimation and BSDF sampling with MIS, as Mitsuba's), for debugging";
+  m.options = kSamplePassOptions;
+  m.validate = [](const RenderSettings&) {};
+  m.render = renderDirect;
+  return m;
+}
+
 }  // namespace erpt

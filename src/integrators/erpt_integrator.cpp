@@ -196,4 +196,18 @@ RgbImage redistributionImage(const RenderSettings& s, RgbImage image, const RgbI
   return filtered;
 }
 
+IntegratorModule erptModule() {
+  IntegratorModule m;
+  m.name = "erpt";
+  m.description = "energy redistribution path tracing (Cline, Talbot, Egbert 2005)";
+  m.options = kSamplePassOptions;
+  m.options.insert(m.options.end(),
+                   {"--mutations-per-pixel", "--chain-length", "--lens-radius", "--mutation-strategy", "--lens-shape",
+                    "--caustic-angle", "--pilot-spp", "--deposit", "--flow", "--pm-filter", "--pm-filter-radius",
+                    "--max-consecutive", "--max-chains-per-seed", "--direct-samples"});
+  m.validate = [](const RenderSettings& s) { validateErptSettings(s.erpt); };
+  m.render = renderErpt;
+  return m;
+}
+
 }  // namespace erpt

@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "erpt/integrators.h"
 #include "erpt/render.h"
 
 namespace erpt {
@@ -12,6 +13,7 @@ void validateErptSettings(const ErptSettings& settings);
 // e_ave of ERPT's pilot pass: the mean energy per pixel sample of the seeds it redistributes.
 double erptPilotEnergy(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
 RgbImage renderErpt(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
+IntegratorModule erptModule();
 // The direct-lighting pass of ERPT and PMC-ER (--direct-samples N > 0; else an empty image),
 // with its own random stream; adds its rays and stage times to `stats`.
 RgbImage renderDirectPass(const Scene& scene, const RenderSettings& settings, RenderStats& stats);

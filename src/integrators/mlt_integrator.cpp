@@ -336,4 +336,22 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   return image;
 }
 
+IntegratorModule mltModule() {
+  IntegratorModule m;
+  m.name = "mlt";
+  m.description = "Metropolis light transport on ERPT's mutations plus an independent large step (docs/mlt.md)";
+  // No sample passes (no checkpoints), its own chain length and expected-value deposits, and
+  // a bootstrap instead of ERPT's pilot.
+  m.options = {"--mutations-per-pixel", "--lens-radius", "--mutation-strategy", "--lens-shape", "--caustic-angle",
+               "--direct-samples", "--large-step-prob", "--bootstrap", "--chains"};
+  m.validate = [](const RenderSettings& s) {
+    // A time-budgeted render checks its own per-pass hook in each pass.
+    RenderSettings once = s;
+    if (s.timeBudget != 0) once.onPasses = nullptr;
+    validateMltSettings(once);
+  };
+  m.render = renderMlt;
+  return m;
+}
+
 }  // namespace erpt

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "erpt/integrators.h"
 #include "erpt/render.h"
 
 namespace erpt {
@@ -8,5 +9,6 @@ namespace erpt {
 // `settings` must be resolved. Throws UsageError naming the option for absurd settings.
 void validateMltSettings(const RenderSettings& settings);
 RgbImage renderMlt(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
+IntegratorModule mltModule();
 
 }  // namespace erpt

@@ -319,4 +319,15 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
   return renderInSamplePasses(settings, setup.order.size(), stats, passes);
 }
 
+IntegratorModule pathModule() {
+  IntegratorModule m;
+  m.name = "path";
+  m.description = "the wavefront path tracer (next-event estimation, MIS, Russian roulette); the default";
+  m.options = kSamplePassOptions;
+  m.options.push_back("--film");  // the only integrator that splats its samples (film_splat.h)
+  m.validate = [](const RenderSettings&) {};
+  m.render = renderPath;
+  return m;
+}
+
 }  // namespace erpt

@@ -4,6 +4,7 @@
 #include <functional>
 #include <memory>
 
+#include "erpt/integrators.h"
 #include "erpt/render.h"
 
 namespace erpt {
@@ -17,6 +18,7 @@ class SplatFilm;
 
 // `settings` must be resolved (resolveSettings).
 RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
+IntegratorModule pathModule();
 
 // The samples one run of the wavefront path tracer takes: sample k of [0, count) is sample
 // number `sample` of pixel `pixel` (its stratum, stages.h). renderPath takes every pixel's

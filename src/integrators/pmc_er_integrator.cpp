@@ -174,4 +174,20 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
   return image(stats.spp, &stats.extraImages);
 }
 
+IntegratorModule pmcErModule() {
+  IntegratorModule m;
+  m.name = "pmc-er";
+  m.description = "population Monte Carlo energy redistribution (Lai, Fan, Chenney, Dyer), unbiased";
+  m.options = kSamplePassOptions;
+  // The mixture sets the mutation kinds, shapes and sizes; energies come from the pool (no
+  // pilot), and its flow has its own option.
+  m.options.insert(m.options.end(),
+                   {"--deposit", "--pm-filter", "--pm-filter-radius", "--max-consecutive", "--direct-samples",
+                    "--pmc-flow", "--population", "--mutations-per-member", "--radii", "--pmc-adapt",
+                    "--resample-rate", "--alpha-floor", "--caustic-prob", "--pmc-region", "--pmc-train-iterations"});
+  m.validate = [](const RenderSettings& s) { validatePmcSettings(s.pmc, s.erpt); };
+  m.render = renderPmcEr;
+  return m;
+}
+
 }  // namespace erpt

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "erpt/integrators.h"
 #include "erpt/render.h"
 
 namespace erpt {
@@ -8,6 +9,7 @@ namespace erpt {
 // `settings` must be resolved. Throws UsageError naming the option for absurd settings.
 void validatePmcSettings(const PmcSettings& settings, const ErptSettings& erpt);
 RgbImage renderPmcEr(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
+IntegratorModule pmcErModule();
 
 // The population a render with these settings runs: at most one member per position of its
 // stratified pool (pixels x spp: the pool is the members' only source of paths, so further

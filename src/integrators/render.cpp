@@ -4,14 +4,11 @@
 #include <chrono>
 #include <cmath>
 
-#include "direct_integrator.h"
+#include "erpt/integrators.h"
 #include "erpt/noise_filters.h"
 #include "erpt/rng.h"
 #include "erpt/tracer.h"
 #include "erpt_integrator.h"
-#include "mlt_integrator.h"
-#include "pmc_er_integrator.h"
-#include "path_integrator.h"
 #include "sample_passes.h"
 
 namespace erpt {
@@ -24,12 +21,7 @@ constexpr uint64_t kPassStream = 0x7061737365ull;
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 RgbImage renderOnce(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
-  if (s.integrator == "path") return renderPath(scene, s, stats);
-  if (s.integrator == "erpt") return renderErpt(scene, s, stats);
-  if (s.integrator == "pmc-er") return renderPmcEr(scene, s, stats);
-  if (s.integrator == "mlt") return renderMlt(scene, s, stats);
-  if (s.integrator == "direct") return renderDirect(scene, s, stats);
-  throw UsageError("unknown integrator '" + s.integrator + "' (available: " + integratorNames() + ")");
+  return integratorNamed(s.integrator).render(scene, s, stats);
 }
 
 void addErptStats(ErptStats& to, const ErptStats& from) {
@@ -217,19 +209,10 @@ RenderSettings resolveSettings(const Scene& scene, RenderSettings s) {
   return s;
 }
 
-const char* integratorNames() { return "path, direct, erpt, pmc-er, mlt"; }
-
 RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
   RenderSettings s = resolveSettings(scene, requested);
   const Clock::time_point start = Clock::now();
-  // Before the BVH build: fail fast.
-  if (s.integrator == "erpt") validateErptSettings(s.erpt);
-  if (s.integrator == "pmc-er") validatePmcSettings(s.pmc, s.erpt);
-  if (s.integrator == "mlt") {
-    RenderSettings once = s;
-    once.onPasses = nullptr;  // a time-budgeted render's own hook is checked per pass
-    validateMltSettings(s.timeBudget != 0 ? once : s);
-  }
+  integratorNamed(s.integrator).validate(s);  // before the BVH build: fail fast
   if (!s.tracer) {
     ThreadPool pool(s.threads);  // the BVH build uses the threads the render may use
     s.tracer = std::make_shared<const Tracer>(scene);

@@ -11,6 +11,7 @@
 
 #include <functional>
 #include <initializer_list>
+#include <string>
 #include <vector>
 
 #include "erpt/byte_stream.h"
@@ -18,6 +19,11 @@
 #include "path_integrator.h"
 
 namespace erpt {
+
+// The options of every integrator that runs in sample passes (renderInSamplePasses): long
+// renders' checkpoints, partial images and the tev display (docs/long-renders.md).
+inline const std::vector<std::string> kSamplePassOptions = {"--checkpoint", "--checkpoint-every", "--write-partial",
+                                                            "--display"};
 
 struct SamplePassHooks {
   std::function<void(ByteWriter&)> save;

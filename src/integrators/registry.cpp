@@ -1,0 +1,37 @@
+// The only place that maps an integrator's name to its module (include/erpt/integrators.h).
+#include "erpt/integrators.h"
+
+#include "direct_integrator.h"
+#include "erpt/error.h"
+#include "erpt_integrator.h"
+#include "mlt_integrator.h"
+#include "path_integrator.h"
+#include "pmc_er_integrator.h"
+
+namespace erpt {
+
+const std::vector<IntegratorModule>& integratorModules() {
+  static const std::vector<IntegratorModule> modules = {pathModule(), directModule(), erptModule(), pmcErModule(),
+                                                        mltModule()};
+  return modules;
+}
+
+const IntegratorModule* findIntegrator(const std::string& name) {
+  for (const IntegratorModule& m : integratorModules())
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+std::string integratorNames() {
+  std::string names;
+  for (const IntegratorModule& m : integratorModules()) names += (names.empty() ? "" : ", ") + m.name;
+  return names;
+}
+
+const IntegratorModule& integratorNamed(const std::string& name) {
+  const IntegratorModule* m = findIntegrator(name);
+  if (!m) throw UsageError("unknown integrator '" + name + "' (available: " + integratorNames() + ")");
+  return *m;
+}
+
+}  // namespace erpt
