@@ -23,6 +23,19 @@ struct IntegratorModule {
   // before building the BVH, so that bad options fail fast.
   void (*validate)(const RenderSettings& settings) = nullptr;
   RgbImage (*render)(const Scene& scene, const RenderSettings& settings, RenderStats& stats) = nullptr;
+  // Its own lines of the end-of-render summary, after the common one (stderr). Optional.
+  void (*printSummary)(const RenderStats& stats) = nullptr;
+
+  // Time-budgeted renders (render.h) run it in independent passes of growing spp. Optional:
+  // once before the first pass, what every pass shares (ERPT: one pilot and a fixed e_d);
+  // before each pass (its spp set), what the configured spp scales (MLT's mutations, the
+  // direct pass's samples).
+  void (*prepareTimedPasses)(const Scene& scene, const RenderSettings& whole, RenderSettings& pass,
+                             RenderStats& stats) = nullptr;
+  void (*scaleTimedPass)(const RenderSettings& whole, RenderSettings& pass) = nullptr;
+  // Its image may carry the proposed-mutations filter, which is not linear: over passes it is
+  // applied once, to the sum of the passes' chain images and tallies.
+  bool proposalFiltered = false;
 };
 
 // Every integrator, in the order --help lists them.

@@ -76,15 +76,6 @@ int runRender(const RenderArgs& args);
 void addResumeCommand(CLI::App& app, ResumeArgs& args);
 int runResume(const ResumeArgs& args);
 int runInfo(const InfoArgs& args);
-// The ERPT part of the end-of-render summary (stderr).
-void printErptSummary(const RenderStats& stats);
-// The PMC-ER part (stderr).
-void printPmcSummary(const RenderStats& stats);
-void printMltSummary(const RenderStats& stats);
-// The chain step's proposals and acceptance per mutation kind, and its rejections by reason,
-// as one line each after `prefix:` (ERPT and MLT summaries).
-void printChainMoves(const char* prefix, const ErptStats& stats);
-void printRejections(const char* prefix, const ErptStats& stats);
 
 // "-D name=value" strings to a map; throws UsageError on a malformed one.
 std::map<std::string, std::string> parseDefines(const std::vector<std::string>& defines);

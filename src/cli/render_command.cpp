@@ -321,9 +321,7 @@ int runRender(const RenderArgs& given) {
   if (stats.refusedRays > 0)
     std::fprintf(stderr, "%s: warning: %llu rays with a non-finite origin or direction were not traced (a bug: please report the scene)\n",
                  s.integrator.c_str(), (unsigned long long)stats.refusedRays);
-  if (s.integrator == "erpt") printErptSummary(stats);
-  if (s.integrator == "pmc-er") printPmcSummary(stats);
-  if (s.integrator == "mlt") printMltSummary(stats);
+  if (const auto print = integratorNamed(s.integrator).printSummary) print(stats);
   if (a.resumeFrom) std::fprintf(stderr, "%s: resumed after %d of %d samples per pixel%s\n", s.integrator.c_str(),
                                  a.resumeFrom->state.passesDone, ownSpp, ranks > 1 ? " (of rank 0)" : "");
   if (ranks > 1) std::fprintf(stderr, "%s: rendered by %d processes (samples per pixel, samples and rays are their total)\n",

@@ -23,6 +23,7 @@
 #include "path_integrator.h"
 #include "render_setup.h"
 #include "sample_passes.h"
+#include "summaries.h"
 
 namespace erpt {
 
@@ -196,6 +197,11 @@ RgbImage redistributionImage(const RenderSettings& s, RgbImage image, const RgbI
   return filtered;
 }
 
+void scaleDirectSamples(const RenderSettings& whole, RenderSettings& pass) {
+  if (whole.erpt.directSamples > 0)
+    pass.erpt.directSamples = std::max(1, int(std::lround(double(whole.erpt.directSamples) * pass.spp / whole.spp)));
+}
+
 IntegratorModule erptModule() {
   IntegratorModule m;
   m.name = "erpt";
@@ -207,6 +213,15 @@ IntegratorModule erptModule() {
                     "--max-consecutive", "--max-chains-per-seed", "--direct-samples"});
   m.validate = [](const RenderSettings& s) { validateErptSettings(s.erpt); };
   m.render = renderErpt;
+  m.printSummary = printErptSummary;
+  m.prepareTimedPasses = [](const Scene& scene, const RenderSettings& s, RenderSettings& pass, RenderStats& stats) {
+    // One pilot for all passes (it is independent of every one of them), and e_d from the
+    // configured spp, so each pass runs the configured mutations per seed.
+    pass.erpt.knownPilotEnergy = erptPilotEnergy(scene, s, stats);
+    pass.erpt.knownDepositEnergy = double(s.spp) * pass.erpt.knownPilotEnergy / std::max(1, s.erpt.mutationsPerPixel);
+  };
+  m.scaleTimedPass = scaleDirectSamples;
+  m.proposalFiltered = true;
   return m;
 }
 

@@ -33,6 +33,7 @@
 #include "path_integrator.h"
 #include "render_setup.h"
 #include "sample_passes.h"
+#include "summaries.h"
 
 namespace erpt {
 
@@ -351,6 +352,12 @@ IntegratorModule mltModule() {
     validateMltSettings(once);
   };
   m.render = renderMlt;
+  m.printSummary = printMltSummary;
+  m.scaleTimedPass = [](const RenderSettings& s, RenderSettings& pass) {
+    // Each pass runs the configured mutations per pixel scaled by its share of the spp.
+    pass.erpt.mutationsPerPixel = std::max(1, int(std::lround(double(s.erpt.mutationsPerPixel) * pass.spp / s.spp)));
+    scaleDirectSamples(s, pass);
+  };
   return m;
 }
 

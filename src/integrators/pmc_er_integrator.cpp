@@ -22,6 +22,7 @@
 #include "pmc_population.h"
 #include "render_setup.h"
 #include "sample_passes.h"
+#include "summaries.h"
 
 namespace erpt {
 
@@ -187,6 +188,9 @@ IntegratorModule pmcErModule() {
                     "--resample-rate", "--alpha-floor", "--caustic-prob", "--pmc-region", "--pmc-train-iterations"});
   m.validate = [](const RenderSettings& s) { validatePmcSettings(s.pmc, s.erpt); };
   m.render = renderPmcEr;
+  m.printSummary = printPmcSummary;
+  m.scaleTimedPass = scaleDirectSamples;
+  m.proposalFiltered = true;
   return m;
 }
 

@@ -8,7 +8,6 @@
 #include "erpt/noise_filters.h"
 #include "erpt/rng.h"
 #include "erpt/tracer.h"
-#include "erpt_integrator.h"
 #include "sample_passes.h"
 
 namespace erpt {
@@ -90,7 +89,6 @@ void addPmcStats(PmcStats& to, const PmcStats& from) {
   to.trainSeconds += from.trainSeconds;
 }
 
-bool redistributes(const std::string& integrator) { return integrator == "erpt" || integrator == "pmc-er"; }
 
 // Running sum of pass images weighted by their samples per pixel.
 struct WeightedSum {
@@ -115,20 +113,16 @@ struct WeightedSum {
 
 RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats& stats, Clock::time_point start) {
   if (!(s.timeBudget > 0) || s.timeBudget > 1e7) throw UsageError("--time must be in (0, 10000000] seconds");
+  const IntegratorModule& module = integratorNamed(s.integrator);
   RenderSettings pass = subRenderSettings(s);
-  if (s.integrator == "erpt") {
-    // One pilot for all passes (it is independent of every one of them), and e_d from the
-    // configured spp, so each pass runs the configured mutations per seed.
-    pass.erpt.knownPilotEnergy = erptPilotEnergy(scene, s, stats);
-    pass.erpt.knownDepositEnergy = double(s.spp) * pass.erpt.knownPilotEnergy / std::max(1, s.erpt.mutationsPerPixel);
-  }
+  if (module.prepareTimedPasses) module.prepareTimedPasses(scene, s, pass, stats);
   WeightedSum image;
   std::vector<WeightedSum> extras;
   double notRendering = 0;  // time spent in onPass
   // The image of all passes so far. The proposed-mutations filter is not linear: it is applied
   // once, to the sum of the passes' chain images and tallies.
   auto resultSoFar = [&]() {
-    if (!redistributes(s.integrator) || s.erpt.pmFilterRadius < 0) return image.mean(stats.spp);
+    if (!module.proposalFiltered || s.erpt.pmFilterRadius < 0) return image.mean(stats.spp);
     RgbImage raw, chains, proposals;
     for (size_t k = 0; k < extras.size(); ++k) {
       const std::string& name = stats.extraImages[k].first;
@@ -142,11 +136,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
   for (int p = 0;; ++p) {
     pass.spp = passSpp;
     pass.seed = p == 0 ? s.seed : streamKey(s.seed, kPassStream, uint64_t(p));
-    // MLT: each pass runs the configured mutations per pixel scaled by its share of the spp.
-    if (s.integrator == "mlt")
-      pass.erpt.mutationsPerPixel = std::max(1, int(std::lround(double(s.erpt.mutationsPerPixel) * passSpp / s.spp)));
-    if ((redistributes(s.integrator) || s.integrator == "mlt") && s.erpt.directSamples > 0)
-      pass.erpt.directSamples = std::max(1, int(std::lround(double(s.erpt.directSamples) * passSpp / s.spp)));
+    if (module.scaleTimedPass) module.scaleTimedPass(s, pass);
     const Clock::time_point passStart = Clock::now();
     RenderStats ps;
     const RgbImage img = renderOnce(scene, pass, ps);

@@ -1,10 +1,10 @@
 // MLT statistics after a render: the bootstrap, the chains, acceptance per mutation kind.
 #include <cstdio>
 
-#include "commands.h"
+#include "summaries.h"
 #include "erpt/erpt_path.h"
 
-namespace erpt::cli {
+namespace erpt {
 
 void printMltSummary(const RenderStats& stats) {
   const MltStats& m = stats.mlt;
@@ -26,4 +26,4 @@ void printMltSummary(const RenderStats& stats) {
   std::fprintf(stderr, "\n");
 }
 
-}  // namespace erpt::cli
+}  // namespace erpt

@@ -1,10 +1,10 @@
 // ERPT statistics after a render: what the chains did and where the time went.
 #include <cstdio>
 
-#include "commands.h"
+#include "summaries.h"
 #include "erpt/erpt_path.h"
 
-namespace erpt::cli {
+namespace erpt {
 
 void printChainMoves(const char* prefix, const ErptStats& e) {
   auto pct = [](uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; };
@@ -52,4 +52,4 @@ void printErptSummary(const RenderStats& stats) {
   std::fprintf(stderr, "\n");
 }
 
-}  // namespace erpt::cli
+}  // namespace erpt

@@ -2,9 +2,9 @@
 // kind, the mixture weights, the energy the resampling moved, and where the time went.
 #include <cstdio>
 
-#include "commands.h"
+#include "summaries.h"
 
-namespace erpt::cli {
+namespace erpt {
 
 void printPmcSummary(const RenderStats& stats) {
   const PmcStats& p = stats.pmc;
@@ -44,4 +44,4 @@ void printPmcSummary(const RenderStats& stats) {
                p.regenerateSeconds, p.trainSeconds);
 }
 
-}  // namespace erpt::cli
+}  // namespace erpt
