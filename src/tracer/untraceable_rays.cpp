@@ -3,11 +3,14 @@
 #include <cfloat>
 #include <cmath>
 
+#include <xsimd/xsimd.hpp>
+
 namespace erpt {
 
 namespace {
-// Written without branches or std::isfinite so that the scan over a whole batch vectorizes;
-// NaN fails every comparison.
+using batch = xsimd::batch<float>;
+
+// NaN fails every comparison, so !(|v| <= FLT_MAX) catches NaN and both infinities.
 inline bool finite(float v) { return std::abs(v) <= FLT_MAX; }
 
 // Finite origin, finite non-zero direction, finite tnear >= 0 and a tfar that is not NaN
@@ -21,14 +24,36 @@ inline bool wellFormed(const RayQueue& rays, size_t i) {
 }
 
 inline bool disabled(const RayQueue& rays, size_t i) { return rays.tnear[i] > rays.tfar[i]; }
+
+// Whether every ray of [begin, end) is well formed: the common case, tested a SIMD batch of
+// rays at a time over the columns (the scalar test per ray cost ~4% of a path-traced render).
+bool allWellFormed(const RayQueue& rays, size_t begin, size_t end) {
+  const batch maxFinite(FLT_MAX), zero(0.0f);
+  auto column = [](const auto& c, size_t i) { return batch::load_unaligned(c.data() + i); };
+  size_t i = begin;
+  for (; i + batch::size <= end; i += batch::size) {
+    const batch dx = column(rays.dirX, i), dy = column(rays.dirY, i), dz = column(rays.dirZ, i);
+    const batch tnear = column(rays.tnear, i), tfar = column(rays.tfar, i);
+    const batch largest = xsimd::max(xsimd::max(xsimd::abs(column(rays.orgX, i)), xsimd::abs(column(rays.orgY, i))),
+                                     xsimd::max(xsimd::abs(column(rays.orgZ, i)), xsimd::abs(tnear)));
+    const batch direction = xsimd::max(xsimd::max(xsimd::abs(dx), xsimd::abs(dy)), xsimd::abs(dz));
+    // xsimd::max may drop a NaN operand; the NaN checks below catch what it drops.
+    const auto good = (largest <= maxFinite) & (direction <= maxFinite) & (direction > zero) & (tnear >= zero) &
+                      (tfar == tfar) & (dx == dx) & (dy == dy) & (dz == dz) &
+                      (column(rays.orgX, i) == column(rays.orgX, i)) & (column(rays.orgY, i) == column(rays.orgY, i)) &
+                      (column(rays.orgZ, i) == column(rays.orgZ, i)) & (tnear == tnear);
+    if (!xsimd::all(good)) return false;
+  }
+  for (; i < end; ++i)
+    if (!wellFormed(rays, i)) return false;
+  return true;
+}
 }  // namespace
 
 bool isTraceable(const RayQueue& rays, size_t i) { return wellFormed(rays, i) | disabled(rays, i); }
 
 size_t refuseUntraceableRays(RayQueue& rays, IndexRange range, std::vector<uint32_t>& refused) {
-  bool all = true;
-  for (size_t i = range.begin; i < range.end; ++i) all &= wellFormed(rays, i);
-  if (all) return 0;  // the common case: one pass, nothing written
+  if (allWellFormed(rays, range.begin, range.end)) return 0;  // nothing written
   size_t count = 0;
   for (size_t i = range.begin; i < range.end; ++i) {
     if (wellFormed(rays, i)) continue;

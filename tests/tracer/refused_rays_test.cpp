@@ -74,6 +74,29 @@ TEST(RefusedRays, IntersectFlagsAndCountsEveryUntraceableRay) {
   EXPECT_EQ(tracer.refusedRays(), bad);
 }
 
+// Each kind of bad ray alone among good ones, at every position of a SIMD batch and in the
+// scalar tail: the batch test must see it by itself.
+TEST(RefusedRays, EachKindAloneIsFoundAnywhereInTheBatch) {
+  test::TempDir dir;
+  Scene scene = quadScene(dir);
+  Tracer tracer(scene);
+  const size_t n = 37;  // not a multiple of any SIMD width: a scalar tail too
+  uint64_t expected = 0;
+  for (const BadRay& b : kBadRays)
+    for (size_t at = 0; at < n; ++at) {
+      RayQueue rays;
+      HitQueue hits;
+      prepareRays(rays, n);
+      hits.resize(n);
+      for (size_t i = 0; i < n; ++i) setRay(rays, i, Vec3(0.25f, -0.25f, 1.0f), Vec3(0, 0, -1), 0.0f, kInf);
+      setRay(rays, at, b.org, b.dir, b.tnear, b.tfar);
+      tracer.intersect(rays, hits, {0, n}, RayCoherence::Incoherent);
+      ++expected;
+      ASSERT_EQ(hits.geomID[at], kRefusedRay) << "bad ray " << (&b - kBadRays) << " at " << at;
+      ASSERT_EQ(tracer.refusedRays(), expected);
+    }
+}
+
 TEST(RefusedRays, OccludedReportsRefusedShadowRaysAsBlocked) {
   test::TempDir dir;
   Scene scene = quadScene(dir);
