@@ -89,7 +89,6 @@ void addPmcStats(PmcStats& to, const PmcStats& from) {
   to.trainSeconds += from.trainSeconds;
 }
 
-
 // Running sum of pass images weighted by their samples per pixel.
 struct WeightedSum {
   std::vector<double> sum;

@@ -26,6 +26,15 @@ struct Tracer::Impl {
   std::vector<float> prototypeVertices;  // shared by the groups' geometries (x, y, z, pad)
   const SphereSet* spheres = nullptr;
   mutable std::atomic<uint64_t> refused{0};  // rays refused so far (untraceable_rays.h)
+
+  // Disables the untraceable rays of a batch and returns their indices (this thread's list,
+  // valid until its next call); the shared count is touched only when there are some.
+  const std::vector<uint32_t>& refuse(RayQueue& rays, IndexRange range) const {
+    thread_local std::vector<uint32_t> indices;
+    indices.clear();
+    if (const size_t n = refuseUntraceableRays(rays, range, indices)) refused += n;
+    return indices;
+  }
   unsigned sphereGeometry = RTC_INVALID_GEOMETRY_ID;
   unsigned firstSpherePrimitive = 0;
   const InstanceSet* instances = nullptr;
@@ -203,9 +212,7 @@ RTCIntersectContext makeContext(RayCoherence coherence) {
 
 void Tracer::intersect(RayQueue& rays, HitQueue& hits, IndexRange range, RayCoherence coherence) const {
   if (range.size() == 0) return;
-  thread_local std::vector<uint32_t> refused;
-  refused.clear();
-  impl_->refused += refuseUntraceableRays(rays, range, refused);
+  const std::vector<uint32_t>& refused = impl_->refuse(rays, range);
   size_t b = range.begin;
   for (size_t i = b; i < range.end; ++i) hits.geomID[i] = hits.instID[i] = RTC_INVALID_GEOMETRY_ID;
   RTCRayHitNp rh;
@@ -226,9 +233,7 @@ void Tracer::intersect(RayQueue& rays, HitQueue& hits, IndexRange range, RayCohe
 
 void Tracer::occluded(RayQueue& rays, IndexRange range) const {
   if (range.size() == 0) return;
-  thread_local std::vector<uint32_t> refused;
-  refused.clear();
-  impl_->refused += refuseUntraceableRays(rays, range, refused);
+  const std::vector<uint32_t>& refused = impl_->refuse(rays, range);
   RTCRayNp r = rayColumns(rays, range.begin);
   RTCIntersectContext ctx = makeContext(RayCoherence::Incoherent);
   rtcOccludedNp(impl_->scene, &ctx, &r, unsigned(range.size()));
