@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "erpt/options.h"
 #include "erpt/render.h"
 
 namespace erpt {
@@ -16,15 +17,24 @@ struct IntegratorModule {
   std::string name;         // --integrator NAME
   std::string description;  // one line, for --help
   // The options it takes besides those every integrator takes (size, threads, seed, depth,
-  // filter, -D, spheres, --spp, --time, output), by their long names. An option given to an
-  // integrator that does not declare it is refused.
-  std::vector<std::string> options;
+  // filter, -D, spheres, --spp, --time, output), each declared once (options.h). An option
+  // given to an integrator that does not declare it is refused.
+  std::vector<OptionSpec> options;
+  // It renders in sample passes (sample_passes.h), so the front end may checkpoint it, write
+  // its partial images and stream them to a viewer (kSamplePassOptions).
+  bool samplePasses = false;
+  // The option that --spp sets for it, when --spp means something else than samples per
+  // pixel (MLT: the mutations per pixel, as Mitsuba's sample count); empty: samples per pixel.
+  std::string sppOption;
   // Throws UsageError (naming the option) for settings it cannot render; render() calls it
   // before building the BVH, so that bad options fail fast.
   void (*validate)(const RenderSettings& settings) = nullptr;
   RgbImage (*render)(const Scene& scene, const RenderSettings& settings, RenderStats& stats) = nullptr;
   // Its own lines of the end-of-render summary, after the common one (stderr). Optional.
   void (*printSummary)(const RenderStats& stats) = nullptr;
+  // Adds its own statistics of one time-budgeted pass (`from`) to the render's (`to`); the
+  // common ones (samples, rays, stage times) are added by render(). Optional.
+  void (*addStats)(RenderStats& to, const RenderStats& from) = nullptr;
 
   // Time-budgeted renders (render.h) run it in independent passes of growing spp. Optional:
   // once before the first pass, what every pass shares (ERPT: one pilot and a fixed e_d);
@@ -46,5 +56,14 @@ const IntegratorModule* findIntegrator(const std::string& name);
 const IntegratorModule& integratorNamed(const std::string& name);
 // "path, direct, erpt, ...", for messages.
 std::string integratorNames();
+// The integrator a scene or caller that names none gets.
+const IntegratorModule& defaultIntegrator();
+// Its declaration of `--name` (name without dashes), or nullptr.
+const OptionSpec* findOption(const IntegratorModule& integrator, const std::string& name);
+
+// The front-end options of integrators that render in sample passes (long names): checkpoints,
+// partial images and the tev display (docs/long-renders.md).
+inline const std::vector<std::string> kSamplePassOptions = {"--checkpoint", "--checkpoint-every", "--write-partial",
+                                                            "--display"};
 
 }  // namespace erpt

@@ -4,7 +4,6 @@
 #include <string>
 
 #include "erpt/checkpoint.h"
-#include "erpt/erpt_settings.h"
 #include "erpt/render.h"
 #include "erpt/scene.h"
 #include <vector>
@@ -16,17 +15,13 @@ class App;
 namespace erpt::cli {
 
 struct RenderArgs {
-  std::string scene, output, integrator, filter, film = "auto";
+  std::string scene, output, integrator, filter;
   int spp = 0, width = 0, height = 0, threads = 0, maxDepth = -2;
   unsigned long long seed = 0;
   std::vector<std::string> defines;
   bool quiet = false, tessellateSpheres = false;
-  ErptSettings erpt;
-  PmcSettings pmc;
-  MltSettings mlt;
-  std::string pmcFlow = "equal-deposition", pmcAdapt = "region", radii = "5,10,50";
-  std::string strategy = "paper", deposit = "paper", flow = "equal-deposition", lensShape = "square", causticAngle = "erpt";
-  bool pmFilter = false;
+  // The integrators' own options (options.h), by long name without dashes, as given.
+  std::map<std::string, std::string> integratorOptions;
   double time = 0;
   // Long renders (docs/long-renders.md).
   std::string checkpoint;        // --checkpoint FILE
@@ -65,7 +60,8 @@ struct CompareArgs {
 void addDiffCommand(CLI::App& app, DiffArgs& args);
 int runDiff(const DiffArgs& args);
 void addRenderCommand(CLI::App& app, RenderArgs& args);
-// The render and ERPT options shared by `render` and `compare`.
+// The render options shared by `render` and `compare`: those every integrator takes, then each
+// integrator's declared options (once each, with the integrators that take them in the help).
 void addRenderOptions(CLI::App* cmd, RenderArgs& args);
 Scene loadSceneFor(const RenderArgs& args);
 RenderSettings settingsFromArgs(const RenderArgs& args, const Scene& scene);

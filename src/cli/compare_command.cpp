@@ -172,7 +172,7 @@ int runCompare(const CompareArgs& a) {
   const RgbImage referenceFile = readImage(a.reference);
   const Scene scene = loadSceneFor(a.render);
   RenderArgs common = a.render;
-  common.integrator = "path";  // the size and filter are all `base` is for
+  common.integrator = defaultIntegrator().name;  // the size and filter are all `base` is for
   const RenderSettings base = resolveSettings(scene, settingsFromArgs(common, scene));
   std::vector<IntegratorEntry> entries;
   for (const std::string& e : splitEntries(a.integrators)) {

@@ -28,8 +28,11 @@ std::vector<std::string> givenOptions(const CLI::App& cmd) {
 
 std::vector<std::string> integratorsUsing(const std::string& option) {
   std::vector<std::string> users;
+  const bool samplePassOption =
+      std::find(kSamplePassOptions.begin(), kSamplePassOptions.end(), option) != kSamplePassOptions.end();
   for (const IntegratorModule& m : integratorModules())
-    if (std::find(m.options.begin(), m.options.end(), option) != m.options.end()) users.push_back(m.name);
+    if (samplePassOption ? m.samplePasses : option.rfind("--", 0) == 0 && findOption(m, option.substr(2)))
+      users.push_back(m.name);
   return users;
 }
 

@@ -27,8 +27,26 @@ std::map<std::string, std::string> parseDefines(const std::vector<std::string>& 
   return out;
 }
 
-static void addPmcOptions(CLI::App* cmd, RenderArgs& a);
-static void addMltOptions(CLI::App* cmd, RenderArgs& a);
+namespace {
+std::string optionTypeName(const OptionSpec& o) {
+  switch (o.kind) {
+    case OptionKind::Integer: return "INT";
+    case OptionKind::Real: return "FLOAT";
+    case OptionKind::List: return "LIST";
+    default: break;
+  }
+  std::string words;
+  for (const std::string& c : o.choices) words += (words.empty() ? "{" : ",") + c;
+  return words + "}";
+}
+
+// "path, direct, ..." : the integrators that take `option`.
+std::string takenBy(const std::string& option) {
+  std::string users;
+  for (const std::string& u : integratorsUsing(option)) users += (users.empty() ? "" : ", ") + u;
+  return users;
+}
+}  // namespace
 
 void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
   cmd->add_option("--spp", a.spp, "Samples per pixel (default: the scene's sample_count)")->check(CLI::Range(1, 1 << 24));
@@ -40,72 +58,22 @@ void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
       ->check(CLI::Range(-1, 100000));
   cmd->add_option("--filter", a.filter, "Pixel filter: box, tent or gaussian (default: the scene's rfilter)")
       ->check(CLI::IsMember({"box", "tent", "gaussian"}));
-  cmd->add_option("--film", a.film, "Path tracer's film: fis (filter importance sampling: each sample counts in its own pixel), splat (samples uniform in the pixel, splatted over the filter, normalized by the weights: Mitsuba's and pbrt-v3's), splat-unbiased (normalized by the expected weights) or auto (default: per filter, see README)")
-      ->check(CLI::IsMember({"auto", "fis", "splat", "splat-unbiased"}));
   cmd->add_option("-D,--define", a.defines, "Override a scene <default>: -D name=value (repeatable)");
   cmd->add_flag("-q,--quiet", a.quiet, "No progress output");
   cmd->add_flag("--tessellate-spheres", a.tessellateSpheres, "Load sphere shapes as 256 x 512 triangle meshes instead of exact spheres (for comparisons)");
-  ErptSettings& e = a.erpt;
-  cmd->add_option("--mutations-per-pixel", e.mutationsPerPixel, "ERPT: mutations per pixel M (sets e_d = spp * e_ave / M)")
-      ->check(CLI::Range(1, 1 << 24));
-  cmd->add_option("--chain-length", e.chainLength, "ERPT: steps m of every chain (paper: 100-1000)")
-      ->check(CLI::Range(1, 1 << 24));
-  cmd->add_option("--lens-radius", e.lensRadius, "ERPT: half-side in pixels of the square lens perturbations move in (4.5 = the paper's 9x9)")
-      ->check(CLI::Range(0.01, 10000.0));
-  cmd->add_option("--mutation-strategy", a.strategy, "ERPT: paper (caustic for L...SDE paths, lens otherwise), mixed (a coin when both apply), lens or caustic (one kind only)")
-      ->check(CLI::IsMember({"paper", "mixed", "lens", "caustic"}));
-  cmd->add_option("--lens-shape", a.lensShape, "ERPT: lens perturbations move the film position uniformly in a square of half-side --lens-radius (square, the paper's) or in a disk of that radius (disk, PMC-ER's)")
-      ->check(CLI::IsMember({"square", "disk"}));
-  cmd->add_option("--caustic-angle", a.causticAngle, "ERPT: caustic perturbation angle: erpt (density 1/theta on [1e-4, 0.1] rad) or veach (uniform in [0, theta_max], PMC-ER eq. 6, for an image move of --lens-radius pixels)")
-      ->check(CLI::IsMember({"erpt", "veach"}));
-  cmd->add_option("--pilot-spp", e.pilotSpp, "ERPT: samples per pixel of the pilot pass estimating e_ave")
-      ->check(CLI::Range(1, 1 << 16));
-  cmd->add_option("--deposit", a.deposit, "ERPT: paper (all of a step's energy at the chain's path) or expected ((1-q) at y, q at z)")
-      ->check(CLI::IsMember({"paper", "expected"}));
-  cmd->add_option("--flow", a.flow, "ERPT flow rule: equal-deposition (default, paper section 3.2) or detailed-balance (section 3.1: each seed is mutated --chain-length times and never moves)")
-      ->check(CLI::IsMember({"equal-deposition", "detailed-balance"}));
-  cmd->add_flag("--pm-filter", a.pmFilter, "ERPT: proposed-mutations noise filter (paper 4.4; biased); also writes OUT-raw.exr (unfiltered) and OUT-proposals.exr (the tally)");
-  cmd->add_option("--pm-filter-radius", e.pmFilterRadius, "ERPT: box radius of the proposed-mutations filter (3 = the paper's 7x7); implies --pm-filter")
-      ->check(CLI::Range(0, 1000));
-  cmd->add_option("--max-consecutive", e.maxConsecutive, "ERPT: consecutive-sample noise filter (paper 4.4; biased): a chain's deposits are dropped after N in a row on one pixel (paper: 10-20; 0 = off)")
-      ->check(CLI::Range(0, 1 << 30));
-  cmd->add_option("--max-chains-per-seed", e.maxChainsPerSeed, "ERPT: at most this many chains per seed (default 4096); a seed that would start more starts this many, each depositing more per step (same total)")
-      ->check(CLI::Range(1, 1000000));
-  cmd->add_option("--direct-samples", e.directSamples, "ERPT: one-bounce paths by a direct-lighting pass with N samples per pixel (default 64); -1: ERPT renders them too, as in the paper")
-      ->check(CLI::Range(-1, 1 << 16));
-  addPmcOptions(cmd, a);
-  addMltOptions(cmd, a);
-}
-
-static void addMltOptions(CLI::App* cmd, RenderArgs& a) {
-  MltSettings& m = a.mlt;
-  cmd->add_option("--large-step-prob", m.largeStepProbability, "MLT: probability that a chain step is a large step, a fresh path-tracer sample through a uniform pixel (default 0.3)")
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--bootstrap", m.bootstrapSpp, "MLT: path-tracer samples per pixel of the bootstrap that estimates the image's luminance b and seeds the chains (default 0: enough for 100,000 samples, at least 1 per pixel)")
-      ->check(CLI::Range(0, 65536));
-  cmd->add_option("--chains", m.chains, "MLT: Markov chains, started by resampling the bootstrap's paths by luminance (default 2048); each runs mutations-per-pixel x pixels / chains steps")
-      ->check(CLI::Range(1, 100000000));
-}
-
-static void addPmcOptions(CLI::App* cmd, RenderArgs& a) {
-  PmcSettings& p = a.pmc;
-  cmd->add_option("--pmc-flow", a.pmcFlow, "PMC-ER: equal-deposition (default, paper figure 2: members are Metropolis chains depositing equally per step) or balance (figure 3: members stay, each proposal receives its share times q)")
-      ->check(CLI::IsMember({"equal-deposition", "balance"}));
-  cmd->add_option("--population", p.population, "PMC-ER: members in the population (default 5000)")->check(CLI::Range(1, 10000000));
-  cmd->add_option("--mutations-per-member", p.mutationsPerMember, "PMC-ER: mutations of every member per iteration (default 16)")
-      ->check(CLI::Range(1, 1000000));
-  cmd->add_option("--radii", a.radii, "PMC-ER: perturbation radii of the mixture in pixels, comma separated (default 5,10,50)");
-  cmd->add_option("--pmc-adapt", a.pmcAdapt, "PMC-ER: mixture weights per image region, learned by an independent training population and frozen (region, default: unbiased), per member from its own acceptances (member, the paper's: can bias), or uniform (off)")
-      ->check(CLI::IsMember({"region", "member", "off"}));
-  cmd->add_option("--resample-rate", p.resampleRate, "PMC-ER: share of the population regenerated from the pool per iteration, and of a member's energy deposited per iteration (default 0.4)")
-      ->check(CLI::Range(1e-3, 1.0));
-  cmd->add_option("--alpha-floor", p.alphaFloor, "PMC-ER: smallest mixture weight eps (default 0.05)")->check(CLI::Range(0.0, 0.5));
-  cmd->add_option("--caustic-prob", p.causticProb, "PMC-ER: probability of the caustic perturbation where it applies (gamma_caustic, default 0.9)")
-      ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--pmc-region", p.regionSize, "PMC-ER region adaptation: side of the square regions in pixels (default 16)")
-      ->check(CLI::Range(1, 65536));
-  cmd->add_option("--pmc-train-iterations", p.trainIterations, "PMC-ER region adaptation: iterations of the training population (default 4)")
-      ->check(CLI::Range(1, 100000));
+  // Each integrator's options, as it declares them; values are checked when applied.
+  for (const IntegratorModule& m : integratorModules())
+    for (const OptionSpec& o : m.options) {
+      if (cmd->get_option_no_throw(o.flag())) continue;  // declared by an earlier integrator too
+      const std::string users = takenBy(o.flag());
+      const bool numeric = o.kind == OptionKind::Integer || o.kind == OptionKind::Real;
+      const std::string help = "[" + users + "] " + o.help +
+                               (numeric ? " (" + o.allowed() + ", default " + o.defaultText() + ")"
+                                : o.kind == OptionKind::Flag ? std::string()
+                                                             : " (default " + o.defaultText() + ")");
+      if (o.kind == OptionKind::Flag) cmd->add_flag(o.flag(), help);
+      else cmd->add_option(o.flag(), a.integratorOptions[o.name], help)->type_name(optionTypeName(o));
+    }
 }
 
 void addRenderCommand(CLI::App& app, RenderArgs& a) {
@@ -117,11 +85,11 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
   cmd->add_option("--integrator", a.integrator, "Integrator (default: the scene's, if it is one of these, else path). " + integrators);
   cmd->add_option("--time", a.time, "Render for this many seconds instead of --spp samples per pixel (passes of growing spp; the image then depends on the machine's speed)")
       ->check(CLI::Range(1e-3, 1e7));
-  cmd->add_option("--checkpoint", a.checkpoint, "Write the render's state to FILE (atomically) every --checkpoint-every seconds and when it ends or is stopped; continue it with `erpt resume FILE` (path, direct, erpt, pmc-er)");
+  cmd->add_option("--checkpoint", a.checkpoint, "Write the render's state to FILE (atomically) every --checkpoint-every seconds and when it ends or is stopped; continue it with `erpt resume FILE` (" + takenBy("--checkpoint") + ")");
   cmd->add_option("--checkpoint-every", a.checkpointEvery, "Seconds between checkpoints (default 300; written at the end of a group of sample passes)")
       ->check(CLI::Range(0.0, 1e7));
   cmd->add_option("--display", a.display, "Stream the image as it converges to the tev viewer listening at HOST:PORT (tev's default: 127.0.0.1:14158)");
-  cmd->add_option("--write-partial", a.writePartial, "Write the image of the sample passes completed so far to the output every this many seconds (path, direct, erpt, pmc-er)")
+  cmd->add_option("--write-partial", a.writePartial, "Write the image of the sample passes completed so far to the output every this many seconds (" + takenBy("--write-partial") + ")")
       ->check(CLI::Range(0.0, 1e7));
   addRenderOptions(cmd, a);
 }
@@ -173,67 +141,31 @@ Scene loadSceneFor(const RenderArgs& a) {
   return scene;
 }
 
-static std::vector<float> parseRadii(const std::string& text) {
-  std::vector<float> radii;
-  size_t start = 0;
-  while (start <= text.size()) {
-    const size_t comma = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, comma - start);
-    size_t used = 0;
-    float r = 0;
-    try {
-      r = std::stof(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (item.empty() || used != item.size()) throw UsageError("--radii expects comma-separated numbers, got '" + text + "'");
-    radii.push_back(r);
-    start = comma + 1;
-  }
-  return radii;
-}
-
 RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
   if (a.maxDepth == 0) throw UsageError("--max-depth must be -1 (unbounded) or at least 1");
   RenderSettings s;
   const bool sceneIntegratorKnown = findIntegrator(scene.integrator.type) != nullptr;
-  s.integrator = !a.integrator.empty() ? a.integrator : sceneIntegratorKnown ? scene.integrator.type : "path";
+  s.integrator = !a.integrator.empty() ? a.integrator : sceneIntegratorKnown ? scene.integrator.type : defaultIntegrator().name;
   s.width = a.width;
   s.height = a.height;
   s.spp = a.spp;
   s.maxDepth = a.maxDepth;
   s.seed = a.seed;
   s.threads = a.threads;
-  s.erpt = a.erpt;
-  s.erpt.strategy = a.strategy == "mixed"  ? MutationStrategy::Mixed
-                    : a.strategy == "lens" ? MutationStrategy::LensOnly
-                    : a.strategy == "caustic" ? MutationStrategy::CausticOnly
-                                              : MutationStrategy::Paper;
-  s.erpt.expectedDeposit = a.deposit == "expected";
-  s.erpt.lensShape = a.lensShape == "disk" ? LensShape::Disk : LensShape::Square;
-  s.erpt.causticAngle = a.causticAngle == "veach" ? CausticAngle::Veach : CausticAngle::Erpt;
-  s.erpt.flow = a.flow == "detailed-balance" ? FlowRule::DetailedBalance : FlowRule::EqualDeposition;
-  if (a.pmFilter && s.erpt.pmFilterRadius < 0) s.erpt.pmFilterRadius = 3;
-  s.pmc = a.pmc;
-  s.mlt = a.mlt;
-  s.pmc.flow = a.pmcFlow == "balance" ? PmcFlow::Balance : PmcFlow::EqualDeposition;
-  s.pmc.adapt = a.pmcAdapt == "member" ? PmcAdapt::Member : a.pmcAdapt == "off" ? PmcAdapt::Off : PmcAdapt::Region;
-  s.pmc.radii = parseRadii(a.radii);
-  s.film = a.film == "fis" ? FilmMode::Fis : a.film == "splat" ? FilmMode::Splat
-          : a.film == "splat-unbiased" ? FilmMode::SplatUnbiased : FilmMode::Auto;
   s.timeBudget = a.time;
-  const auto given = [&](const char* option) { return std::find(a.given.begin(), a.given.end(), option) != a.given.end(); };
-  if (s.integrator == "mlt" && given("--spp")) {
-    // Mitsuba's MLT takes its sampler's sample count as the mutations per pixel.
-    if (given("--mutations-per-pixel"))
-      throw UsageError("for mlt --spp is the mutations per pixel (as Mitsuba's sample count): give --spp or --mutations-per-pixel, not both");
-    s.erpt.mutationsPerPixel = a.spp;
+  const auto given = [&](const std::string& option) { return std::find(a.given.begin(), a.given.end(), option) != a.given.end(); };
+  if (const IntegratorModule* integrator = findIntegrator(s.integrator)) {  // an unknown one is refused by the caller
+    std::vector<std::pair<std::string, std::string>> options;
+    for (const OptionSpec& o : integrator->options)
+      if (given(o.flag())) options.emplace_back(o.name, o.kind == OptionKind::Flag ? "true" : a.integratorOptions.at(o.name));
+    if (!integrator->sppOption.empty() && given("--spp")) {
+      if (given("--" + integrator->sppOption))
+        throw UsageError("for " + integrator->name + " --spp is the " + integrator->sppOption +
+                         " (as Mitsuba's sample count): give --spp or --" + integrator->sppOption + ", not both");
+      options.emplace_back(integrator->sppOption, std::to_string(a.spp));
+    }
+    applyOptions(*integrator, options, s);
   }
-  for (const char* option : {"--pmc-region", "--pmc-train-iterations"})
-    if (given(option) && s.pmc.adapt != PmcAdapt::Region)
-      throw UsageError(std::string(option) + " applies to pmc-er with --pmc-adapt region only");
-  if (given("--alpha-floor") && s.pmc.adapt == PmcAdapt::Off)
-    throw UsageError("--alpha-floor has no effect on pmc-er with --pmc-adapt off (the weights stay uniform)");
   if (given("--checkpoint-every") && a.checkpoint.empty()) throw UsageError("--checkpoint-every needs --checkpoint FILE");
   if (!a.filter.empty()) {
     s.filterSet = true;

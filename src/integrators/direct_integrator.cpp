@@ -91,7 +91,7 @@ IntegratorModule directModule() {
   IntegratorModule m;
   m.name = "direct";
   m.description = "direct lighting only (next-event estimation and BSDF sampling with MIS, as Mitsuba's), for debugging";
-  m.options = kSamplePassOptions;
+  m.samplePasses = true;
   m.validate = [](const RenderSettings&) {};
   m.render = renderDirect;
   return m;

@@ -22,8 +22,9 @@
 #include "erpt/seed_checks.h"
 #include "path_integrator.h"
 #include "render_setup.h"
+#include "chain_options.h"
 #include "sample_passes.h"
-#include "summaries.h"
+#include "integrator_stats.h"
 
 namespace erpt {
 
@@ -32,16 +33,9 @@ constexpr uint64_t kPilotStream = 0x70696c6f74ull, kDirectStream = 0x64697265637
 }  // namespace
 
 void validateErptSettings(const ErptSettings& o) {
-  if (o.mutationsPerPixel < 1) throw UsageError("--mutations-per-pixel must be at least 1");
-  if (o.chainLength < 1) throw UsageError("--chain-length must be at least 1");
-  if (!(o.lensRadius > 0) || !(o.lensRadius <= 1e4f)) throw UsageError("--lens-radius must be in (0, 10000] pixels");
-  if (o.pilotSpp < 1) throw UsageError("--pilot-spp must be at least 1");
-  if (o.directSamples == 0 || o.directSamples < -1)
-    throw UsageError("--direct-samples must be -1 (ERPT renders direct light too) or at least 1");
-  if (o.pmFilterRadius < -1 || o.pmFilterRadius > 1000) throw UsageError("--pm-filter-radius must be in [0, 1000] pixels");
-  if (o.maxChainsPerSeed < 1 || o.maxChainsPerSeed > 1000000)
-    throw UsageError("--max-chains-per-seed must be in [1, 1000000]");
-  if (o.maxConsecutive < 0) throw UsageError("--max-consecutive must be at least 1 (or 0: off)");
+  // The ranges of single options are their declarations' (erptModule); these are the rules
+  // that tie values or options together.
+  if (o.directSamples == 0) throw UsageError("--direct-samples must be -1 (the chains render direct light too) or at least 1");
   if (o.maxConsecutive > 0 && o.flow == FlowRule::DetailedBalance)
     throw UsageError("--max-consecutive needs moving chains: it does not apply to --flow detailed-balance");
 }
@@ -206,14 +200,29 @@ IntegratorModule erptModule() {
   IntegratorModule m;
   m.name = "erpt";
   m.description = "energy redistribution path tracing (Cline, Talbot, Egbert 2005)";
-  m.options = kSamplePassOptions;
-  m.options.insert(m.options.end(),
-                   {"--mutations-per-pixel", "--chain-length", "--lens-radius", "--mutation-strategy", "--lens-shape",
-                    "--caustic-angle", "--pilot-spp", "--deposit", "--flow", "--pm-filter", "--pm-filter-radius",
-                    "--max-consecutive", "--max-chains-per-seed", "--direct-samples"});
+  m.samplePasses = true;
+  m.options = {mutationsPerPixelOption(),
+               integerOption("chain-length", "steps m of every chain (paper: 100-1000)", 1, 1 << 24,
+                             [](auto& s) -> auto& { return s.erpt.chainLength; }),
+               integerOption("pilot-spp", "samples per pixel of the pilot pass estimating e_ave", 1, 65536,
+                             [](auto& s) -> auto& { return s.erpt.pilotSpp; }),
+               choiceOption<FlowRule>("flow",
+                                      "equal-deposition (paper section 3.2) or detailed-balance (section 3.1: each "
+                                      "seed is mutated --chain-length times and never moves)",
+                                      {{"equal-deposition", FlowRule::EqualDeposition},
+                                       {"detailed-balance", FlowRule::DetailedBalance}},
+                                      [](auto& s) -> auto& { return s.erpt.flow; }),
+               integerOption("max-chains-per-seed",
+                             "at most this many chains per seed; a seed that would start more starts this many, each "
+                             "depositing more per step (same total)",
+                             1, 1000000, [](auto& s) -> auto& { return s.erpt.maxChainsPerSeed; }),
+               directSamplesOption()};
+  addOptions(m.options, perturbationOptions());
+  addOptions(m.options, depositOptions());
   m.validate = [](const RenderSettings& s) { validateErptSettings(s.erpt); };
   m.render = renderErpt;
   m.printSummary = printErptSummary;
+  m.addStats = [](RenderStats& to, const RenderStats& from) { addErptStats(to.erpt, from.erpt); };
   m.prepareTimedPasses = [](const Scene& scene, const RenderSettings& s, RenderSettings& pass, RenderStats& stats) {
     // One pilot for all passes (it is independent of every one of them), and e_d from the
     // configured spp, so each pass runs the configured mutations per seed.

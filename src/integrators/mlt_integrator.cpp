@@ -33,7 +33,8 @@
 #include "path_integrator.h"
 #include "render_setup.h"
 #include "sample_passes.h"
-#include "summaries.h"
+#include "chain_options.h"
+#include "integrator_stats.h"
 
 namespace erpt {
 
@@ -174,11 +175,6 @@ void appendSeed(SeedStore& to, const SeedStore& from, size_t i, size_t copies) {
 void validateMltSettings(const RenderSettings& s) {
   validateErptSettings(s.erpt);
   const MltSettings& m = s.mlt;
-  if (!(m.largeStepProbability >= 0) || !(m.largeStepProbability <= 1))
-    throw UsageError("--large-step-prob must be in [0, 1]");
-  if (m.bootstrapSpp < 0 || m.bootstrapSpp > 65536)
-    throw UsageError("--bootstrap must be in [1, 65536] samples per pixel (0: automatic)");
-  if (m.chains < 1 || m.chains > 100000000) throw UsageError("--chains must be in [1, 100000000]");
   const double mutations = double(s.erpt.mutationsPerPixel) * double(s.width) * double(s.height);
   if (mutations / double(m.chains) > double(1 << 30))
     throw UsageError("--mutations-per-pixel x pixels / --chains gives more than 2^30 steps per chain; raise --chains");
@@ -343,8 +339,21 @@ IntegratorModule mltModule() {
   m.description = "Metropolis light transport on ERPT's mutations plus an independent large step (docs/mlt.md)";
   // No sample passes (no checkpoints), its own chain length and expected-value deposits, and
   // a bootstrap instead of ERPT's pilot.
-  m.options = {"--mutations-per-pixel", "--lens-radius", "--mutation-strategy", "--lens-shape", "--caustic-angle",
-               "--direct-samples", "--large-step-prob", "--bootstrap", "--chains"};
+  m.options = {mutationsPerPixelOption(), directSamplesOption(),
+               realOption("large-step-prob",
+                          "probability that a chain step is a large step, a fresh path-tracer sample through a "
+                          "uniform pixel",
+                          0, 1, [](auto& s) -> auto& { return s.mlt.largeStepProbability; }),
+               integerOption("bootstrap",
+                             "path-tracer samples per pixel of the bootstrap that estimates the image's luminance b "
+                             "and seeds the chains (0: enough for 100,000 samples, at least 1 per pixel)",
+                             0, 65536, [](auto& s) -> auto& { return s.mlt.bootstrapSpp; }),
+               integerOption("chains",
+                             "Markov chains, started by resampling the bootstrap's paths by luminance; each runs "
+                             "mutations-per-pixel x pixels / chains steps",
+                             1, 100000000, [](auto& s) -> auto& { return s.mlt.chains; })};
+  addOptions(m.options, perturbationOptions());
+  m.sppOption = "mutations-per-pixel";  // Mitsuba's MLT takes its sampler's sample count as this
   m.validate = [](const RenderSettings& s) {
     // A time-budgeted render checks its own per-pass hook in each pass.
     RenderSettings once = s;
@@ -353,6 +362,10 @@ IntegratorModule mltModule() {
   };
   m.render = renderMlt;
   m.printSummary = printMltSummary;
+  m.addStats = [](RenderStats& to, const RenderStats& from) {
+    addErptStats(to.erpt, from.erpt);  // the chain step's counts
+    addMltStats(to.mlt, from.mlt);
+  };
   m.scaleTimedPass = [](const RenderSettings& s, RenderSettings& pass) {
     // Each pass runs the configured mutations per pixel scaled by its share of the spp.
     pass.erpt.mutationsPerPixel = std::max(1, int(std::lround(double(s.erpt.mutationsPerPixel) * pass.spp / s.spp)));

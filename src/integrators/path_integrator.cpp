@@ -288,8 +288,8 @@ bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
   return complete;
 }
 
-RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderStats& stats) {
-  RenderSetup setup(scene, settings);
+RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderStats& stats, FilmMode film) {
+  RenderSetup setup(scene, settings, film);
   std::optional<SplatFilm> splat;
   if (setup.filmMode != FilmMode::Fis) splat.emplace(setup.filter, settings.width, settings.height);
   SamplePassHooks passes;
@@ -323,10 +323,19 @@ IntegratorModule pathModule() {
   IntegratorModule m;
   m.name = "path";
   m.description = "the wavefront path tracer (next-event estimation, MIS, Russian roulette); the default";
-  m.options = kSamplePassOptions;
-  m.options.push_back("--film");  // the only integrator that splats its samples (film_splat.h)
+  m.samplePasses = true;
+  // The only integrator that may splat its samples (film_splat.h); the others' films are FIS.
+  m.options = {choiceOption<FilmMode>(
+      "film",
+      "fis (filter importance sampling: each sample counts in its own pixel), splat (samples uniform in the pixel, "
+      "splatted over the filter, normalized by the weights: Mitsuba's and pbrt-v3's), splat-unbiased (normalized by "
+      "the expected weights) or auto (per filter: docs/film-splatting.md)",
+      {{"auto", FilmMode::Auto}, {"fis", FilmMode::Fis}, {"splat", FilmMode::Splat}, {"splat-unbiased", FilmMode::SplatUnbiased}},
+      [](auto& s) -> auto& { return s.film; })};
   m.validate = [](const RenderSettings&) {};
-  m.render = renderPath;
+  m.render = [](const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+    return renderPath(scene, s, stats, filmModeFor(s.film, s.filter));
+  };
   return m;
 }
 

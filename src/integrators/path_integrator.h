@@ -16,8 +16,10 @@ class StageTimes;
 class Film;
 class SplatFilm;
 
-// `settings` must be resolved (resolveSettings).
-RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
+// `settings` must be resolved (resolveSettings). `film`: how samples reach the image (Fis for
+// every path tracer inside another integrator; `--integrator path` passes its --film).
+RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderStats& stats,
+                    FilmMode film = FilmMode::Fis);
 IntegratorModule pathModule();
 
 // The samples one run of the wavefront path tracer takes: sample k of [0, count) is sample

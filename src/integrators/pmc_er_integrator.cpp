@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "erpt/pmc_mixture.h"
 #include "erpt/rng.h"
@@ -22,7 +23,8 @@
 #include "pmc_population.h"
 #include "render_setup.h"
 #include "sample_passes.h"
-#include "summaries.h"
+#include "chain_options.h"
+#include "integrator_stats.h"
 
 namespace erpt {
 
@@ -30,21 +32,44 @@ namespace {
 constexpr uint64_t kPoolStream = 0x706f6f6cull, kTrainStream = 0x747261696eull;
 }  // namespace
 
+namespace {
+// --radii r1,r2,...: the mixture's components in pixels.
+OptionSpec radiiOption() {
+  OptionSpec o{"radii", "perturbation radii of the mixture in pixels, comma separated", OptionKind::List};
+  o.set = [](RenderSettings& s, const std::string& text) {
+    std::vector<float> radii;
+    size_t start = 0;
+    while (start <= text.size()) {
+      const size_t comma = std::min(text.find(',', start), text.size());
+      const std::string item = text.substr(start, comma - start);
+      char* end = nullptr;
+      const float r = std::strtof(item.c_str(), &end);
+      if (item.empty() || *end != '\0') throw UsageError("--radii expects comma-separated numbers, got '" + text + "'");
+      radii.push_back(r);
+      start = comma + 1;
+    }
+    s.pmc.radii = radii;
+  };
+  o.get = [](const RenderSettings& s) {
+    std::string text;
+    for (float r : s.pmc.radii) text += (text.empty() ? "" : ",") + formatOptionNumber(r);
+    return text;
+  };
+  return o;
+}
+std::string regionAdaptationOnly(const RenderSettings& s) {
+  return s.pmc.adapt == PmcAdapt::Region ? "" : "applies to pmc-er with --pmc-adapt region only";
+}
+}  // namespace
+
 void validatePmcSettings(const PmcSettings& p, const ErptSettings& e) {
+  // The ranges of single options are their declarations' (pmcErModule); these tie values together.
   validateErptSettings(e);
-  if (p.population < 1 || p.population > 10000000) throw UsageError("--population must be in [1, 10000000]");
-  if (p.mutationsPerMember < 1 || p.mutationsPerMember > 1000000)
-    throw UsageError("--mutations-per-member must be in [1, 1000000]");
   if (p.radii.empty() || p.radii.size() > size_t(kMaxPmcRadii))
     throw UsageError("--radii takes 1 to " + std::to_string(kMaxPmcRadii) + " radii");
   for (float r : p.radii)
     if (!(r > 0) || !(r <= 1e4f)) throw UsageError("--radii: every radius must be in (0, 10000] pixels");
-  if (!(p.resampleRate > 0) || !(p.resampleRate <= 1)) throw UsageError("--resample-rate must be in (0, 1]");
-  if (!(p.alphaFloor >= 0) || !(p.alphaFloor * float(p.radii.size()) < 1))
-    throw UsageError("--alpha-floor must be in [0, 1 / (number of radii))");
-  if (!(p.causticProb >= 0) || !(p.causticProb <= 1)) throw UsageError("--caustic-prob must be in [0, 1]");
-  if (p.regionSize < 1 || p.regionSize > 65536) throw UsageError("--pmc-region must be in [1, 65536] pixels");
-  if (p.trainIterations < 1 || p.trainIterations > 100000) throw UsageError("--pmc-train-iterations must be in [1, 100000]");
+  if (!(p.alphaFloor * float(p.radii.size()) < 1)) throw UsageError("--alpha-floor must be in [0, 1 / (number of radii))");
   if (e.maxConsecutive > 0 && p.flow == PmcFlow::Balance)
     throw UsageError("--max-consecutive needs moving chains: it does not apply to --pmc-flow balance");
 }
@@ -179,16 +204,52 @@ IntegratorModule pmcErModule() {
   IntegratorModule m;
   m.name = "pmc-er";
   m.description = "population Monte Carlo energy redistribution (Lai, Fan, Chenney, Dyer), unbiased";
-  m.options = kSamplePassOptions;
+  m.samplePasses = true;
   // The mixture sets the mutation kinds, shapes and sizes; energies come from the pool (no
   // pilot), and its flow has its own option.
-  m.options.insert(m.options.end(),
-                   {"--deposit", "--pm-filter", "--pm-filter-radius", "--max-consecutive", "--direct-samples",
-                    "--pmc-flow", "--population", "--mutations-per-member", "--radii", "--pmc-adapt",
-                    "--resample-rate", "--alpha-floor", "--caustic-prob", "--pmc-region", "--pmc-train-iterations"});
+  m.options = {
+      choiceOption<PmcFlow>("pmc-flow",
+                            "equal-deposition (paper figure 2: members are Metropolis chains depositing equally per "
+                            "step) or balance (figure 3: members stay, each proposal receives its share times q)",
+                            {{"equal-deposition", PmcFlow::EqualDeposition}, {"balance", PmcFlow::Balance}},
+                            [](auto& s) -> auto& { return s.pmc.flow; }),
+      integerOption("population", "members in the population", 1, 10000000, [](auto& s) -> auto& { return s.pmc.population; }),
+      integerOption("mutations-per-member", "mutations of every member per iteration", 1, 1000000,
+                    [](auto& s) -> auto& { return s.pmc.mutationsPerMember; }),
+      radiiOption(),
+      choiceOption<PmcAdapt>("pmc-adapt",
+                             "mixture weights per image region, learned by an independent training population and "
+                             "frozen (region: unbiased), per member from its own acceptances (member, the paper's: "
+                             "can bias), or uniform (off)",
+                             {{"region", PmcAdapt::Region}, {"member", PmcAdapt::Member}, {"off", PmcAdapt::Off}},
+                             [](auto& s) -> auto& { return s.pmc.adapt; }),
+      realOption("resample-rate",
+                 "share of the population regenerated from the pool per iteration, and of a member's energy "
+                 "deposited per iteration",
+                 0.001, 1, [](auto& s) -> auto& { return s.pmc.resampleRate; }),
+      onlyWhen(realOption("alpha-floor", "smallest mixture weight eps (below 1 / the number of radii)", 0, 0.5,
+                          [](auto& s) -> auto& { return s.pmc.alphaFloor; }),
+               [](const RenderSettings& s) {
+                 return s.pmc.adapt != PmcAdapt::Off ? ""
+                                                     : "has no effect on pmc-er with --pmc-adapt off (the weights stay uniform)";
+               }),
+      realOption("caustic-prob", "probability of the caustic perturbation where it applies (gamma_caustic)", 0, 1,
+                 [](auto& s) -> auto& { return s.pmc.causticProb; }),
+      onlyWhen(integerOption("pmc-region", "region adaptation: side of the square regions in pixels", 1, 65536,
+                             [](auto& s) -> auto& { return s.pmc.regionSize; }),
+               regionAdaptationOnly),
+      onlyWhen(integerOption("pmc-train-iterations", "region adaptation: iterations of the training population", 1,
+                             100000, [](auto& s) -> auto& { return s.pmc.trainIterations; }),
+               regionAdaptationOnly),
+      directSamplesOption()};
+  addOptions(m.options, depositOptions());
   m.validate = [](const RenderSettings& s) { validatePmcSettings(s.pmc, s.erpt); };
   m.render = renderPmcEr;
   m.printSummary = printPmcSummary;
+  m.addStats = [](RenderStats& to, const RenderStats& from) {
+    addErptStats(to.erpt, from.erpt);  // the chain step's counts
+    addPmcStats(to.pmc, from.pmc);
+  };
   m.scaleTimedPass = scaleDirectSamples;
   m.proposalFiltered = true;
   return m;

@@ -28,6 +28,14 @@ std::string integratorNames() {
   return names;
 }
 
+const IntegratorModule& defaultIntegrator() { return integratorModules().front(); }
+
+const OptionSpec* findOption(const IntegratorModule& integrator, const std::string& name) {
+  for (const OptionSpec& o : integrator.options)
+    if (o.name == name) return &o;
+  return nullptr;
+}
+
 const IntegratorModule& integratorNamed(const std::string& name) {
   const IntegratorModule* m = findIntegrator(name);
   if (!m) throw UsageError("unknown integrator '" + name + "' (available: " + integratorNames() + ")");

@@ -23,72 +23,6 @@ RgbImage renderOnce(const Scene& scene, const RenderSettings& s, RenderStats& st
   return integratorNamed(s.integrator).render(scene, s, stats);
 }
 
-void addErptStats(ErptStats& to, const ErptStats& from) {
-  to.seeds += from.seeds;
-  to.chains += from.chains;
-  to.mutations += from.mutations;
-  for (int k = 0; k < kMutationKindCount; ++k) to.proposed[k] += from.proposed[k], to.accepted[k] += from.accepted[k];
-  for (size_t r = 0; r < std::size(to.rejected); ++r) to.rejected[r] += from.rejected[r];
-  to.deposits += from.deposits;
-  for (int r = 0; r < kInPlaceReasonCount; ++r) to.inPlace[r] += from.inPlace[r];
-  to.cappedSeeds += from.cappedSeeds;
-  to.rays += from.rays;
-  to.pilotEnergy = from.pilotEnergy;
-  to.depositEnergy = from.depositEnergy;
-  to.erptSeconds += from.erptSeconds;
-  to.discardedDeposits += from.discardedDeposits;
-  to.discardedEnergy += from.discardedEnergy;
-}
-
-void addMltStats(MltStats& to, const MltStats& from) {
-  to.b = from.b;  // each pass estimates b on its own; the last one is shown
-  to.inPlaceEnergy = from.inPlaceEnergy;
-  to.bootstrapSamples += from.bootstrapSamples;
-  to.domainSeeds += from.domainSeeds;
-  to.inPlaceSeeds += from.inPlaceSeeds;
-  to.chains += from.chains;
-  to.chainLength = from.chainLength;
-  to.energyPerStep = from.energyPerStep;
-  to.chainSeconds += from.chainSeconds;
-  to.bootstrapSeconds += from.bootstrapSeconds;
-}
-
-void addPmcStats(PmcStats& to, const PmcStats& from) {
-  to.iterations += from.iterations;
-  to.drainIterations += from.drainIterations;
-  to.trainingIterations += from.trainingIterations;
-  to.population = from.population;
-  to.requestedPopulation = from.requestedPopulation;
-  to.poolSize += from.poolSize;
-  to.poolEnergy += from.poolEnergy;
-  to.poolUsed += from.poolUsed;
-  to.candidates += from.candidates;
-  to.inPlaceSeeds += from.inPlaceSeeds;
-  to.membersBorn += from.membersBorn;
-  to.eliminated += from.eliminated;
-  to.split += from.split;
-  to.energyRegenerated += from.energyRegenerated;
-  to.energyEliminated += from.energyEliminated;
-  to.energyFinal += from.energyFinal;
-  to.steps += from.steps;
-  to.depositEnergy = from.depositEnergy;
-  to.meanDeposit = from.meanDeposit;
-  to.radiusCount = from.radiusCount;
-  for (int k = 0; k < kMaxPmcRadii; ++k) {
-    to.radii[k] = from.radii[k];
-    for (int m = 0; m < kMutationKindCount; ++m) {
-      to.proposed[k][m] += from.proposed[k][m];
-      to.accepted[k][m] += from.accepted[k][m];
-      to.acceptanceSum[k][m] += from.acceptanceSum[k][m];
-    }
-    for (int b = 0; b < kAlphaBins; ++b) to.alphaHistogram[k][b] += from.alphaHistogram[k][b];
-  }
-  to.resampleSeconds += from.resampleSeconds;
-  to.regenerateSeconds += from.regenerateSeconds;
-  to.chainSeconds += from.chainSeconds;
-  to.trainSeconds += from.trainSeconds;
-}
-
 // Running sum of pass images weighted by their samples per pixel.
 struct WeightedSum {
   std::vector<double> sum;
@@ -156,9 +90,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
     stats.rays += ps.rays;
     stats.invalidSamples += ps.invalidSamples;
     for (const auto& [name, seconds] : ps.stages.all()) stats.stages.add(name, seconds);
-    addErptStats(stats.erpt, ps.erpt);
-    addPmcStats(stats.pmc, ps.pmc);
-    addMltStats(stats.mlt, ps.mlt);
+    if (module.addStats) module.addStats(stats, ps);
     stats.spp += passSpp;
     stats.passes = p + 1;
 
@@ -201,7 +133,11 @@ RenderSettings resolveSettings(const Scene& scene, RenderSettings s) {
 RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
   RenderSettings s = resolveSettings(scene, requested);
   const Clock::time_point start = Clock::now();
-  integratorNamed(s.integrator).validate(s);  // before the BVH build: fail fast
+  const IntegratorModule& integrator = integratorNamed(s.integrator);
+  // Before the BVH build, to fail fast: each declared option's range, then the integrator's
+  // rules between options.
+  for (const OptionSpec& option : integrator.options) checkOptionRange(option, s);
+  integrator.validate(s);
   if (!s.tracer) {
     ThreadPool pool(s.threads);  // the BVH build uses the threads the render may use
     s.tracer = std::make_shared<const Tracer>(scene);

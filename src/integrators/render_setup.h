@@ -14,12 +14,6 @@
 namespace erpt {
 
 struct RenderSetup {
-  // Whether this render's path tracer splats its samples (only `--integrator path` does).
-  static bool splats(const RenderSettings& s) {
-    const FilmMode m = filmModeFor(s.film, s.filter);
-    return s.integrator == "path" && (m == FilmMode::Splat || m == FilmMode::SplatUnbiased);
-  }
-
   ThreadPool pool;
   std::shared_ptr<const Tracer> sharedTracer;
   const Tracer& tracer;
@@ -27,21 +21,22 @@ struct RenderSetup {
   PixelFilter filter;
   // Where camera samples go in a pixel: drawn from the filter (Fis), uniform when splatting.
   PixelFilter sampling;
-  FilmMode filmMode;  // Fis unless the path tracer splats
+  FilmMode filmMode;  // Fis, or how the path tracer splats
   LightSampler lights;
   StageContext ctx;
   Film film;
   std::vector<uint32_t> order;  // pixels in 16x16 tiles
   size_t totalSamples;          // order.size() * spp
 
-  RenderSetup(const Scene& scene, const RenderSettings& s)
+  // `film`: Fis, or Splat/SplatUnbiased for a path tracer that splats (never Auto).
+  RenderSetup(const Scene& scene, const RenderSettings& s, FilmMode film = FilmMode::Fis)
       : pool(s.threads),
         sharedTracer(s.tracer ? s.tracer : std::make_shared<const Tracer>(scene)),
         tracer(*sharedTracer),
         camera(scene.camera, s.width, s.height),
         filter(s.filter),
-        sampling(splats(s) ? FilterKind::Box : s.filter),
-        filmMode(splats(s) ? filmModeFor(s.film, s.filter) : FilmMode::Fis),
+        sampling(film == FilmMode::Fis ? s.filter : FilterKind::Box),
+        filmMode(film),
         lights(scene),
         ctx{scene, camera, sampling, lights, s.seed, s.width, s.spp, s.maxDepth},
         film(s.width, s.height),

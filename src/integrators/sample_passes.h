@@ -20,11 +20,6 @@
 
 namespace erpt {
 
-// The options of every integrator that runs in sample passes (renderInSamplePasses): long
-// renders' checkpoints, partial images and the tev display (docs/long-renders.md).
-inline const std::vector<std::string> kSamplePassOptions = {"--checkpoint", "--checkpoint-every", "--write-partial",
-                                                            "--display"};
-
 struct SamplePassHooks {
   std::function<void(ByteWriter&)> save;
   std::function<void(ByteReader&)> load;

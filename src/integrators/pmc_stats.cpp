@@ -2,9 +2,45 @@
 // kind, the mixture weights, the energy the resampling moved, and where the time went.
 #include <cstdio>
 
-#include "summaries.h"
+#include "integrator_stats.h"
 
 namespace erpt {
+
+void addPmcStats(PmcStats& to, const PmcStats& from) {
+  to.iterations += from.iterations;
+  to.drainIterations += from.drainIterations;
+  to.trainingIterations += from.trainingIterations;
+  to.population = from.population;
+  to.requestedPopulation = from.requestedPopulation;
+  to.poolSize += from.poolSize;
+  to.poolEnergy += from.poolEnergy;
+  to.poolUsed += from.poolUsed;
+  to.candidates += from.candidates;
+  to.inPlaceSeeds += from.inPlaceSeeds;
+  to.membersBorn += from.membersBorn;
+  to.eliminated += from.eliminated;
+  to.split += from.split;
+  to.energyRegenerated += from.energyRegenerated;
+  to.energyEliminated += from.energyEliminated;
+  to.energyFinal += from.energyFinal;
+  to.steps += from.steps;
+  to.depositEnergy = from.depositEnergy;
+  to.meanDeposit = from.meanDeposit;
+  to.radiusCount = from.radiusCount;
+  for (int k = 0; k < kMaxPmcRadii; ++k) {
+    to.radii[k] = from.radii[k];
+    for (int m = 0; m < kMutationKindCount; ++m) {
+      to.proposed[k][m] += from.proposed[k][m];
+      to.accepted[k][m] += from.accepted[k][m];
+      to.acceptanceSum[k][m] += from.acceptanceSum[k][m];
+    }
+    for (int b = 0; b < kAlphaBins; ++b) to.alphaHistogram[k][b] += from.alphaHistogram[k][b];
+  }
+  to.resampleSeconds += from.resampleSeconds;
+  to.regenerateSeconds += from.regenerateSeconds;
+  to.chainSeconds += from.chainSeconds;
+  to.trainSeconds += from.trainSeconds;
+}
 
 void printPmcSummary(const RenderStats& stats) {
   const PmcStats& p = stats.pmc;

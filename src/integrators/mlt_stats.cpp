@@ -1,10 +1,23 @@
 // MLT statistics after a render: the bootstrap, the chains, acceptance per mutation kind.
 #include <cstdio>
 
-#include "summaries.h"
+#include "integrator_stats.h"
 #include "erpt/erpt_path.h"
 
 namespace erpt {
+
+void addMltStats(MltStats& to, const MltStats& from) {
+  to.b = from.b;  // each pass estimates b on its own; the last one is shown
+  to.inPlaceEnergy = from.inPlaceEnergy;
+  to.bootstrapSamples += from.bootstrapSamples;
+  to.domainSeeds += from.domainSeeds;
+  to.inPlaceSeeds += from.inPlaceSeeds;
+  to.chains += from.chains;
+  to.chainLength = from.chainLength;
+  to.energyPerStep = from.energyPerStep;
+  to.chainSeconds += from.chainSeconds;
+  to.bootstrapSeconds += from.bootstrapSeconds;
+}
 
 void printMltSummary(const RenderStats& stats) {
   const MltStats& m = stats.mlt;

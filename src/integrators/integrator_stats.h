@@ -1,10 +1,15 @@
-// The integrators' own lines of the end-of-render summary (stderr), which their modules print
-// (IntegratorModule::printSummary).
+// The integrators' own statistics: how a time-budgeted render adds its passes' statistics
+// (IntegratorModule::addStats) and their lines of the end-of-render summary (stderr;
+// IntegratorModule::printSummary).
 #pragma once
 
 #include "erpt/render.h"
 
 namespace erpt {
+
+void addErptStats(ErptStats& to, const ErptStats& from);
+void addPmcStats(PmcStats& to, const PmcStats& from);
+void addMltStats(MltStats& to, const MltStats& from);
 
 void printErptSummary(const RenderStats& stats);
 void printPmcSummary(const RenderStats& stats);

@@ -1,10 +1,27 @@
 // ERPT statistics after a render: what the chains did and where the time went.
 #include <cstdio>
 
-#include "summaries.h"
+#include "integrator_stats.h"
 #include "erpt/erpt_path.h"
 
 namespace erpt {
+
+void addErptStats(ErptStats& to, const ErptStats& from) {
+  to.seeds += from.seeds;
+  to.chains += from.chains;
+  to.mutations += from.mutations;
+  for (int k = 0; k < kMutationKindCount; ++k) to.proposed[k] += from.proposed[k], to.accepted[k] += from.accepted[k];
+  for (size_t r = 0; r < std::size(to.rejected); ++r) to.rejected[r] += from.rejected[r];
+  to.deposits += from.deposits;
+  for (int r = 0; r < kInPlaceReasonCount; ++r) to.inPlace[r] += from.inPlace[r];
+  to.cappedSeeds += from.cappedSeeds;
+  to.rays += from.rays;
+  to.pilotEnergy = from.pilotEnergy;
+  to.depositEnergy = from.depositEnergy;
+  to.erptSeconds += from.erptSeconds;
+  to.discardedDeposits += from.discardedDeposits;
+  to.discardedEnergy += from.discardedEnergy;
+}
 
 void printChainMoves(const char* prefix, const ErptStats& e) {
   auto pct = [](uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; };

@@ -1,0 +1,20 @@
+// Options that several integrators share, declared once (options.h): the perturbations of
+// ERPT's mutation engine (erpt, mlt), the chains' budget, the direct-lighting pass (erpt,
+// pmc-er, mlt) and the redistribution's deposits and noise filters (erpt, pmc-er).
+#pragma once
+
+#include <vector>
+
+#include "erpt/options.h"
+
+namespace erpt {
+
+OptionSpec mutationsPerPixelOption();
+std::vector<OptionSpec> perturbationOptions();  // strategy, lens radius and shape, caustic angle
+OptionSpec directSamplesOption();
+std::vector<OptionSpec> depositOptions();       // deposit rule, proposed-mutations and consecutive-sample filters
+
+// Appends `more` to `to` (for building a module's option list from these parts).
+void addOptions(std::vector<OptionSpec>& to, const std::vector<OptionSpec>& more);
+
+}  // namespace erpt
