@@ -23,7 +23,7 @@ namespace erpt {
 
 enum class FilmMode { Auto, Fis, Splat, SplatUnbiased };
 const char* filmModeName(FilmMode m);
-// What Auto means for a filter (chosen by measurement: README, "Film splatting").
+// What Auto means for a filter (chosen by measurement: docs/film-splatting.md).
 FilmMode filmModeFor(FilmMode requested, FilterKind filter);
 
 class SplatFilm {

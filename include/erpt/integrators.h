@@ -24,7 +24,8 @@ struct IntegratorModule {
   // its partial images and stream them to a viewer (kSamplePassOptions).
   bool samplePasses = false;
   // The option that --spp sets for it, when --spp means something else than samples per
-  // pixel (MLT: the mutations per pixel, as Mitsuba's sample count); empty: samples per pixel.
+  // pixel (MLT: the mutations per pixel, as Mitsuba's sample count; its spp is then 1, and
+  // time-budgeted passes scale the option by theirs); empty: samples per pixel.
   std::string sppOption;
   // Throws UsageError (naming the option) for settings it cannot render; render() calls it
   // before building the BVH, so that bad options fail fast.

@@ -163,6 +163,7 @@ RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
         throw UsageError("for " + integrator->name + " --spp is the " + integrator->sppOption +
                          " (as Mitsuba's sample count): give --spp or --" + integrator->sppOption + ", not both");
       options.emplace_back(integrator->sppOption, std::to_string(a.spp));
+      s.spp = 1;  // its render is one pass; time-budgeted passes scale the option by their spp
     }
     applyOptions(*integrator, options, s);
   }

@@ -44,7 +44,7 @@ const char* filmModeName(FilmMode m) {
 
 FilmMode filmModeFor(FilmMode requested, FilterKind filter) {
   if (requested != FilmMode::Auto) return requested;
-  // Box: splatting and importance sampling are the same estimator. Tent and gaussian: see README.
+  // Box: splatting and importance sampling are the same estimator. Tent and gaussian: docs/film-splatting.md.
   return filter == FilterKind::Box ? FilmMode::Fis : FilmMode::Splat;
 }
 

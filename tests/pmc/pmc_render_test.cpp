@@ -59,7 +59,7 @@ TEST(StatisticalPmc, PlasticBoxBalanceMatchesPathTracerBlockByBlock) {
   blockByBlock(plasticBox(), PmcFlow::Balance, PmcAdapt::Region, 5300, 16, 24);
 }
 // The paper's per-member adaptation: a state-dependent kernel, not f-invariant in general
-// (docs/pmc-er.md); no bias was detected at this precision (see the README's results; on the
+// (docs/pmc-er.md); no bias was detected at this precision (see docs/pmc-er.md, "Measured"; on the
 // default scene, measured once: mean z^2 1.28, worst |z| 2.95, left out of the suite for time).
 TEST(StatisticalPmc, PlasticBoxMemberAdaptationBlockByBlock) {
   blockByBlock(plasticBox(), PmcFlow::EqualDeposition, PmcAdapt::Member, 5500, 16, 16);
