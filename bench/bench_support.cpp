@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "erpt/camera.h"
-#include "erpt/rng.h"
+#include "models/camera.h"
+#include "core/rng.h"
 #include "erpt/scene_loader.h"
-#include "erpt/surface.h"
-#include "erpt/tracer.h"
-#include "erpt/warp.h"
+#include "models/surface.h"
+#include "tracer/tracer.h"
+#include "core/warp.h"
 
 namespace erpt::bench {
 

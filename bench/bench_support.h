@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "erpt/queues.h"
+#include "core/queues.h"
 #include "erpt/scene.h"
 
 namespace erpt::bench {

@@ -4,10 +4,10 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_support.h"
-#include "erpt/chain_step.h"
-#include "erpt/erpt_chains.h"
+#include "stages/chain_step.h"
+#include "integrators/chain_lanes.h"
 #include "erpt/render.h"
-#include "erpt/rng.h"
+#include "core/rng.h"
 
 namespace erpt::bench {
 namespace {
@@ -16,22 +16,22 @@ constexpr int kSize = 128;
 constexpr size_t kSlots = 1 << 13;
 constexpr size_t kGrain = 256;
 
-// Seeds of a 4 spp path-traced Cornell box and the chain queues (ErptQueues, kSlots slots)
+// Seeds of a 4 spp path-traced Cornell box and the chain queues (StepQueues, kSlots slots)
 // with chains started from them, plus snapshots of the queues before each stage.
-struct ErptFixture : ErptQueues {
+struct ErptFixture : StepQueues {
   Scene scene = loadCornellBox();
   Tracer tracer{scene};
   Camera camera{scene.camera, kSize, kSize};
   PixelFilter filter{FilterKind::Box};
   LightSampler lights{scene};
   FilmDensity density{filter, kSize, kSize};
-  ErptStepContext ctx{MeasureContext{scene, lights, camera, density}, ErptSettings{}};
+  StepConfig ctx{MeasureContext{scene, lights, camera, density}, StepSettings{}};
   SeedStore seeds;
   RayQueue eyeRays, tracedShadowRays;
   ProposalQueue mutated, walked;  // proposals after mutate, after walk + connect
   double energy = 0;  // sum of seed luminances
 
-  ErptFixture() : ErptQueues(kSlots) {
+  ErptFixture() : StepQueues(kSlots) {
     RenderSettings s;
     s.width = s.height = kSize;
     s.spp = 4;
@@ -45,15 +45,15 @@ struct ErptFixture : ErptQueues {
       if (seeds.seeds.vertexCount[i] <= uint32_t(kMaxChainVertices) && luminance(seeds.contribution(i)) > 0)
         loadChainFromSeed(chains, chainVertices, slot++, seeds, i, streamKey(1, i, 0), 1 << 30, 0.01f);
     const IndexRange all{0, kSlots};
-    stageErptMutate(ctx, chains, chainVertices, proposals, rays, all);
+    stageChainMutate(ctx, chains, chainVertices, proposals, rays, all);
     for (size_t i = 0; i < kSlots; ++i) disableRay(shadowRays, i);
     eyeRays = rays;
     mutated = proposals;
     tracer.intersect(rays, hits, all, RayCoherence::Incoherent);
-    stageErptTrace(ctx, chains, chainVertices, proposals, proposalVertices, rays, hits, shadowRays, all);
+    stageChainTrace(ctx, chains, chainVertices, proposals, proposalVertices, rays, hits, shadowRays, all);
     walked = proposals;
     tracedShadowRays = shadowRays;
-    stageErptConnect(tracer, tracedShadowRays, walked, all);
+    stageChainConnect(tracer, tracedShadowRays, walked, all);
   }
 };
 
@@ -79,7 +79,7 @@ void BM_ErptMutate(benchmark::State& state) {
   RayQueue rays = f.rays;
   for (auto _ : state)
     forEachRange("mutate", kSlots, kGrain, [&](IndexRange r) {
-      stageErptMutate(f.ctx, f.chains, f.chainVertices, proposals, rays, r);
+      stageChainMutate(f.ctx, f.chains, f.chainVertices, proposals, rays, r);
     });
   setRate(state, "mutations/s", kSlots);
 }
@@ -118,7 +118,7 @@ void BM_ErptTrace(benchmark::State& state) {
     rays = traced;
     state.ResumeTiming();
     forEachRange("trace", kSlots, kGrain, [&](IndexRange r) {
-      stageErptTrace(f.ctx, f.chains, f.chainVertices, proposals, vertices, rays, hits, shadow, r);
+      stageChainTrace(f.ctx, f.chains, f.chainVertices, proposals, vertices, rays, hits, shadow, r);
     });
   }
   setRate(state, "mutations/s", kSlots);
@@ -135,7 +135,7 @@ void BM_ErptConnect(benchmark::State& state) {
     std::copy(f.shadowRays.tfar.begin(), f.shadowRays.tfar.end(), shadow.tfar.begin());
     state.ResumeTiming();
     forEachRange("connect", kSlots, kGrain, [&](IndexRange r) {
-      stageErptConnect(f.tracer, shadow, proposals, r);
+      stageChainConnect(f.tracer, shadow, proposals, r);
     });
   }
   setRate(state, "rays/s", double(n));
@@ -148,14 +148,14 @@ void BM_ErptAccept(benchmark::State& state) {
   VertexQueue vertices = f.chainVertices;
   ProposalQueue proposals = f.walked;
   DepositQueue deposits = f.deposits;
-  ErptCounters counters;
+  StepCounters counters;
   for (auto _ : state) {
     state.PauseTiming();
     chains = f.chains;
     vertices = f.chainVertices;
     state.ResumeTiming();
     forEachRange("accept", kSlots, kGrain, [&](IndexRange r) {
-      stageErptAccept(f.ctx, chains, vertices, proposals, f.proposalVertices, deposits, counters, r);
+      stageChainAccept(f.ctx, chains, vertices, proposals, f.proposalVertices, deposits, counters, r);
     });
   }
   setRate(state, "mutations/s", kSlots);
@@ -167,8 +167,8 @@ void BM_ErptDeposit(benchmark::State& state) {
   VertexQueue vertices = f.chainVertices;
   ProposalQueue proposals = f.walked;
   DepositQueue deposits = f.deposits;
-  ErptCounters counters;
-  stageErptAccept(f.ctx, chains, vertices, proposals, f.proposalVertices, deposits, counters, {0, kSlots});
+  StepCounters counters;
+  stageChainAccept(f.ctx, chains, vertices, proposals, f.proposalVertices, deposits, counters, {0, kSlots});
   Film film(kSize, kSize);
   // Argument 1: both noise filters on (consecutive samples at 10, proposal tally).
   std::vector<uint32_t> tally(size_t(kSize) * kSize, 0);
@@ -196,10 +196,11 @@ void BM_ErptChainLoop(benchmark::State& state) {
   const int threads = int(state.range(0));
   ThreadPool pool(threads);
   const size_t slots = state.range(1) > 0 ? size_t(state.range(1)) : kErptLaneSlots;
-  ErptStepContext ctx = f.ctx;
-  ctx.settings.chainLength = 100;
-  ctx.settings.directSamples = -1;  // every seed is ERPT's
-  ErptChains::Config config{ctx, 7, slots};
+  StepConfig ctx = f.ctx;
+  ChainSettings lanes;
+  lanes.chainLength = 100;
+  lanes.directSamples = -1;  // every seed is ERPT's
+  ChainLanes::Config config{ctx, lanes, 7, slots};
   config.lanes = threads;
   config.depositEnergy = f.energy / (kSize * kSize * 16.0);
   uint64_t mutations = 0, rays = 0;
@@ -208,17 +209,17 @@ void BM_ErptChainLoop(benchmark::State& state) {
     Film film(kSize, kSize);
     ErptStats stats;
     StageTimes times;
-    ErptChains chains(f.tracer, config, film, stats, times);
+    ChainLanes chains(f.tracer, config, film, stats, times);
     chains.consume(f.seeds);
     chains.finish();
     mutations += stats.mutations;
     rays += stats.rays;
     for (const auto& [name, seconds] : times.all()) {
       total += seconds;
-      if (name == "erpt intersect" || name == "erpt connect") embree += seconds;
+      if (name == "chain intersect" || name == "chain connect") embree += seconds;
       // The single-threaded part: the per-seed triage of each seed batch (which seeds start
       // chains, how many). Refill and deposit run in every lane.
-      if (name == "erpt seed triage") serial += seconds;
+      if (name == "chain seed triage") serial += seconds;
     }
   }
   state.counters["mutations/s"] = benchmark::Counter(double(mutations), benchmark::Counter::kIsRate);
@@ -234,13 +235,13 @@ void BM_ErptChainStep(benchmark::State& state) {
   ErptFixture& f = fixture();
   const MutationKind kind = MutationKind(state.range(0));
   ThreadPool pool(int(state.range(1)));
-  ErptStepContext ctx = f.ctx;
+  StepConfig ctx = f.ctx;
   const bool lens = kind == MutationKind::Lens || kind == MutationKind::LensDisk;
   ctx.settings.strategy = lens ? MutationStrategy::LensOnly : MutationStrategy::CausticOnly;
   ctx.settings.lensShape = kind == MutationKind::LensDisk ? LensShape::Disk : LensShape::Square;
   ctx.settings.causticAngle = kind == MutationKind::CausticVeach ? CausticAngle::Veach : CausticAngle::Erpt;
-  ErptQueues q = f;
-  ErptCounters counters;
+  StepQueues q = f;
+  StepCounters counters;
   const ChainStep step{f.tracer, ctx, nullptr, kGrain};
   uint64_t rays = 0;
   for (auto _ : state) rays += step.run(q, counters);

@@ -2,8 +2,8 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_support.h"
-#include "erpt/camera.h"
-#include "erpt/rng.h"
+#include "models/camera.h"
+#include "core/rng.h"
 
 namespace erpt::bench {
 namespace {

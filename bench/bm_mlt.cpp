@@ -33,7 +33,7 @@ void BM_MltRender(benchmark::State& state) {
     chain += stats.mlt.chainSeconds;
     bootstrap += stats.mlt.bootstrapSeconds;
     const auto& stages = stats.stages.all();
-    if (const auto it = stages.find("erpt large step"); it != stages.end()) large += it->second;
+    if (const auto it = stages.find("chain large step"); it != stages.end()) large += it->second;
   }
   state.counters["chain_mutations/s"] = chain > 0 ? double(mutations) / chain : 0;
   state.counters["chain_rays/s"] = chain > 0 ? double(rays) / chain : 0;

@@ -2,10 +2,11 @@
 // at 1 and 2 threads. Counters: rays/s and paths/s (samples/s).
 #include <benchmark/benchmark.h>
 
+#include "core/parallel.h"
 #include "bench_support.h"
 #include "erpt/render.h"
-#include "erpt/stages.h"
-#include "erpt/tracer.h"
+#include "stages/stages.h"
+#include "tracer/tracer.h"
 
 namespace erpt::bench {
 namespace {

@@ -4,8 +4,8 @@
 #include <benchmark/benchmark.h>
 
 #include "bench_support.h"
-#include "erpt/parallel.h"
-#include "erpt/tracer.h"
+#include "core/parallel.h"
+#include "tracer/tracer.h"
 
 namespace erpt::bench {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "erpt/erpt_kinds.h"
+#include "erpt/mutation_kinds.h"
 
 namespace erpt {
 
@@ -42,10 +42,6 @@ struct ErptSettings {
   // At most this many chains start from one seed; a seed that would start more (a tiny e_ave
   // makes e / (m e_d) explode) starts this many, each step depositing e / (m cap) instead of e_d.
   int maxChainsPerSeed = 4096;
-  // Set by time-budgeted rendering (render.h), which runs ERPT in passes: a known e_ave (the
-  // pilot runs once) and a fixed e_d (so every pass keeps the configured mutations per seed).
-  double knownPilotEnergy = -1;  // >= 0: skip the pilot pass
-  double knownDepositEnergy = 0; // > 0: e_d, instead of n e_ave / M
 };
 
 struct ErptStats {

@@ -5,6 +5,7 @@
 // validates its settings and how it renders.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,9 @@
 #include "erpt/render.h"
 
 namespace erpt {
+
+// Renders one pass of a time-budgeted render.
+using PassRenderer = std::function<RgbImage(const Scene& scene, const RenderSettings& pass, RenderStats& stats)>;
 
 struct IntegratorModule {
   std::string name;         // --integrator NAME
@@ -38,11 +42,10 @@ struct IntegratorModule {
   void (*addStats)(RenderStats& to, const RenderStats& from) = nullptr;
 
   // Time-budgeted renders (render.h) run it in independent passes of growing spp. Optional:
-  // once before the first pass, what every pass shares (ERPT: one pilot and a fixed e_d);
-  // before each pass (its spp set), what the configured spp scales (MLT's mutations, the
-  // direct pass's samples).
-  void (*prepareTimedPasses)(const Scene& scene, const RenderSettings& whole, RenderSettings& pass,
-                             RenderStats& stats) = nullptr;
+  // once before the first pass, what every pass shares (ERPT: one pilot and a fixed e_d),
+  // returned as the function that renders a pass (unset: `render`); before each pass (its spp
+  // set), what the configured spp scales (MLT's mutations, the direct pass's samples).
+  PassRenderer (*timedPasses)(const Scene& scene, const RenderSettings& whole, RenderStats& stats) = nullptr;
   void (*scaleTimedPass)(const RenderSettings& whole, RenderSettings& pass) = nullptr;
   // Its image may carry the proposed-mutations filter, which is not linear: over passes it is
   // applied once, to the sum of the passes' chain images and tallies.

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "erpt/erpt_kinds.h"
+#include "erpt/mutation_kinds.h"
 
 namespace erpt {
 

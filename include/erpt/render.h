@@ -10,26 +10,17 @@
 #include <vector>
 
 #include "erpt/erpt_settings.h"
-#include "erpt/film_splat.h"
 #include "erpt/image_io.h"
 #include "erpt/mlt_settings.h"
-#include "erpt/parallel.h"
 #include "erpt/pmc_settings.h"
+#include "erpt/render_state.h"
 #include "erpt/scene.h"
-#include "erpt/seeds.h"
+#include "erpt/stage_times.h"
 
 namespace erpt {
 
 class Tracer;
-
-// A render's state after a whole number of sample passes (pass j gives every pixel its
-// sample j, so after k passes every pixel has k samples): what a checkpoint holds, and what a
-// render stopped part-way through a pass falls back to. `bytes` is the integrator's own
-// layout (film sums, chain counters, statistics; sample_passes.h).
-struct RenderState {
-  int passesDone = 0;
-  std::vector<uint8_t> bytes;
-};
+struct SeedStore;
 
 // A render split over processes (MPI; docs/long-renders.md, "Many machines"): this process
 // renders the sample passes j with j % ranks == rank, and sumAcrossRanks replaces a vector by

@@ -127,6 +127,10 @@ struct Emitter {
 };
 
 enum class FilterKind { Box, Tent, Gaussian };
+// How the path tracer's samples reach the film (docs/film-splatting.md): Fis (filter importance
+// sampling), Splat (normalised by the weights), SplatUnbiased (by their expectation), or Auto
+// (per filter).
+enum class FilmMode { Auto, Fis, Splat, SplatUnbiased };
 
 enum class FovAxis { X, Y, Diagonal, Smaller, Larger };
 

@@ -3,7 +3,7 @@
 #include <map>
 #include <string>
 
-#include "erpt/checkpoint.h"
+#include "io/checkpoint.h"
 #include "erpt/render.h"
 #include "erpt/scene.h"
 #include <vector>

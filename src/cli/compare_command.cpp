@@ -16,7 +16,7 @@
 #include "option_scope.h"
 #include "erpt/error.h"
 #include "erpt/integrators.h"
-#include "erpt/error_plots.h"
+#include "io/error_plots.h"
 #include "erpt/image_metrics.h"
 
 namespace erpt::cli {

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "commands.h"
-#include "erpt/checkpoint.h"
-#include "erpt/tev_display.h"
+#include "io/checkpoint.h"
+#include "io/tev_display.h"
 
 namespace erpt::cli {
 

@@ -1,4 +1,4 @@
-#include "erpt/parallel.h"
+#include "core/parallel.h"
 
 #include <xmmintrin.h>
 #include <pmmintrin.h>

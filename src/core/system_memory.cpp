@@ -1,4 +1,4 @@
-#include "erpt/system_memory.h"
+#include "core/system_memory.h"
 
 #include <unistd.h>
 

@@ -6,10 +6,11 @@
 // generate -> intersect (coherent) -> shade -> {occluded, intersect} -> gather -> film.
 #include <atomic>
 
+#include "core/parallel.h"
 #include "direct_integrator.h"
-#include "erpt/film.h"
-#include "erpt/stages.h"
-#include "erpt/tracer.h"
+#include "models/film.h"
+#include "stages/stages.h"
+#include "tracer/tracer.h"
 #include "render_setup.h"
 #include "sample_passes.h"
 

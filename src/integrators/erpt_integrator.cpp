@@ -7,7 +7,7 @@
 //      and rendered by the stratified direct-lighting integrator instead (as Mitsuba does).
 //   3. Main pass: the wavefront path tracer at n samples per pixel, in sample passes
 //      (sample_passes.h), streams its seeds batch by batch into the chain machine
-//      (erpt_chains.h), which starts floor(U + e / (m e_d)) chains per seed and runs them,
+//      (chain_lanes.h), which starts floor(U + e / (m e_d)) chains per seed and runs them,
 //      to the end after each group of passes; pixel value = sum of deposits / passes done.
 #include "erpt_integrator.h"
 
@@ -16,10 +16,10 @@
 #include <cmath>
 
 #include "direct_integrator.h"
-#include "erpt/rng.h"
-#include "erpt/erpt_chains.h"
-#include "erpt/noise_filters.h"
-#include "erpt/seed_checks.h"
+#include "core/rng.h"
+#include "integrators/chain_lanes.h"
+#include "integrators/noise_filters.h"
+#include "integrators/seed_checks.h"
 #include "path_integrator.h"
 #include "render_setup.h"
 #include "chain_options.h"
@@ -70,13 +70,17 @@ double erptPilotEnergy(const Scene& scene, const RenderSettings& s, RenderStats&
 }
 
 RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+  return renderErptWith(scene, s, stats, ErptEnergies{});
+}
+
+RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats& stats, const ErptEnergies& known) {
   const ErptSettings& o = s.erpt;
   validateErptSettings(o);
   ErptStats& es = stats.erpt;
   RgbImage direct;
   if (!s.resume) {  // else pilot energy, e_d and the direct image come with the state
-    es.pilotEnergy = o.knownPilotEnergy >= 0 ? o.knownPilotEnergy : erptPilotEnergy(scene, s, stats);
-    es.depositEnergy = o.knownDepositEnergy > 0 ? o.knownDepositEnergy : double(s.spp) * es.pilotEnergy / o.mutationsPerPixel;
+    es.pilotEnergy = known.pilot >= 0 ? known.pilot : erptPilotEnergy(scene, s, stats);
+    es.depositEnergy = known.deposit > 0 ? known.deposit : double(s.spp) * es.pilotEnergy / o.mutationsPerPixel;
     // The direct pass first, so that the image of every completed pass is whole. (A split
     // render runs it even when stopped: its ranks must make the same collective calls.)
     if (!stopRequested(s.stop) || s.share.split()) direct = renderDirectPass(scene, s, stats);
@@ -86,9 +90,10 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
   FilmDensity density(setup.filter, s.width, s.height);
   // The chains' random streams: a rank of a split render has its own (its counters start at 0 too).
   const uint64_t chainSeed = s.share.split() ? streamKey(s.seed, kRankStream, uint64_t(s.share.rank)) : s.seed;
-  ErptChains::Config config{ErptStepContext{MeasureContext{scene, setup.lights, setup.camera, density}, o}, chainSeed,
-                            kErptLaneSlots, es.depositEnergy, s.stop, setup.pool.threads()};
-  ErptChains chains(setup.tracer, config, setup.film, es, stats.stages);
+  ChainLanes::Config config{StepConfig{MeasureContext{scene, setup.lights, setup.camera, density}, stepSettingsOf(o)},
+                            chainSettingsOf(o), chainSeed, kErptLaneSlots, es.depositEnergy, s.stop,
+                            setup.pool.threads()};
+  ChainLanes chains(setup.tracer, config, setup.film, es, stats.stages);
   if (stopRequested(s.stop) && !s.resume && !s.share.split()) {  // stopped in the pilot or the direct pass
     stats.spp = 0;
     stats.partial = true;
@@ -223,11 +228,15 @@ IntegratorModule erptModule() {
   m.render = renderErpt;
   m.printSummary = printErptSummary;
   m.addStats = [](RenderStats& to, const RenderStats& from) { addErptStats(to.erpt, from.erpt); };
-  m.prepareTimedPasses = [](const Scene& scene, const RenderSettings& s, RenderSettings& pass, RenderStats& stats) {
+  m.timedPasses = [](const Scene& scene, const RenderSettings& s, RenderStats& stats) -> PassRenderer {
     // One pilot for all passes (it is independent of every one of them), and e_d from the
     // configured spp, so each pass runs the configured mutations per seed.
-    pass.erpt.knownPilotEnergy = erptPilotEnergy(scene, s, stats);
-    pass.erpt.knownDepositEnergy = double(s.spp) * pass.erpt.knownPilotEnergy / std::max(1, s.erpt.mutationsPerPixel);
+    ErptEnergies known;
+    known.pilot = erptPilotEnergy(scene, s, stats);
+    known.deposit = double(s.spp) * known.pilot / std::max(1, s.erpt.mutationsPerPixel);
+    return [known](const Scene& sc, const RenderSettings& pass, RenderStats& ps) {
+      return renderErptWith(sc, pass, ps, known);
+    };
   };
   m.scaleTimedPass = scaleDirectSamples;
   m.proposalFiltered = true;

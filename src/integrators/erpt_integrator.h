@@ -13,6 +13,13 @@ void validateErptSettings(const ErptSettings& settings);
 // e_ave of ERPT's pilot pass: the mean energy per pixel sample of the seeds it redistributes.
 double erptPilotEnergy(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
 RgbImage renderErpt(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
+// ERPT with e_ave and e_d known (time-budgeted passes share one pilot and a fixed e_d).
+struct ErptEnergies {
+  double pilot = -1;   // >= 0: e_ave, and no pilot pass
+  double deposit = 0;  // > 0: e_d, instead of spp e_ave / M
+};
+RgbImage renderErptWith(const Scene& scene, const RenderSettings& settings, RenderStats& stats,
+                        const ErptEnergies& known);
 IntegratorModule erptModule();
 // Time-budgeted passes of ERPT, PMC-ER and MLT: the direct pass's samples per pixel follow the
 // pass's share of the configured spp.

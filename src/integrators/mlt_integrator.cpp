@@ -25,13 +25,14 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "erpt/erpt_chains.h"
-#include "erpt/mlt_stages.h"
-#include "erpt/rng.h"
-#include "erpt/seed_checks.h"
+#include "integrators/chain_lanes.h"
+#include "stages/mlt_stages.h"
+#include "core/rng.h"
+#include "integrators/seed_checks.h"
 #include "erpt_integrator.h"
 #include "path_integrator.h"
 #include "render_setup.h"
+#include "integrators/systematic_resampling.h"
 #include "sample_passes.h"
 #include "chain_options.h"
 #include "integrator_stats.h"
@@ -46,17 +47,23 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// The large steps of a chain lane: the path tracer, run on the lane's thread over one sample
-// per large step, then stageMltLargeSteps. The samples run in groups by the vertex count
+// MLT's choices in every step: the large-step coin (mltChooser), and the large steps of a chain
+// lane: the path tracer, run on the lane's thread over one sample per large step, then
+// stageMltLargeSteps. The samples run in groups by the vertex count
 // their chain asks for, each group's walks stopped at that length (max depth n - 1): the
 // path tracer's decisions up to a path's last vertex do not depend on how far it may go on,
 // so the candidate is the same as a full walk's, at a fraction of the rays.
-class LargeStepSource final : public ProposalSource {
+class MltPolicy final : public ProposalPolicy {
  public:
-  LargeStepSource(const Tracer& tracer, const StageContext& ctx, uint32_t pixels)
+  MltPolicy(const Tracer& tracer, const StageContext& ctx, uint32_t pixels)
       : tracer_(tracer), ctx_(ctx), pixels_(pixels) {}
 
-  uint64_t propose(const ErptStepContext& ctx, ErptQueues& q, StageTimes* times) const override {
+  void choose(const StepConfig& ctx, const ChainQueue& chains, ProposalQueue& proposals, RayQueue& rays,
+              IndexRange range) const override {
+    mltChooser().choose(ctx, chains, proposals, rays, range);
+  }
+
+  uint64_t startOwnProposals(const StepConfig& ctx, StepQueues& q, StageTimes* times) const override {
     const auto start = std::chrono::steady_clock::now();
     Scratch& s = scratch_.local();
     s.slots.clear();
@@ -94,7 +101,7 @@ class LargeStepSource final : public ProposalSource {
       rays += traceSeedsInline(tracer_, group, samples, s.store, s.path, pathTimes);
       stageMltLargeSteps(ctx, q.chains, s.store, slots, count, q.proposals, q.proposalVertices);
     }
-    if (times) times->add("erpt large step", secondsSince(start));
+    if (times) times->add("chain large step", secondsSince(start));
     return rays;
   }
 
@@ -114,7 +121,7 @@ class LargeStepSource final : public ProposalSource {
 // The bootstrap's view of one recorded contribution: whether the chains hold it (its
 // luminance then counts towards b) or it is deposited where it is.
 struct Bootstrap {
-  const ErptStepContext& ctx;
+  const StepConfig& ctx;
   bool excludeDirect;
   std::vector<float> energies;               // luminance of the domain contributions, in order
   double energyByLength[kMaxChainVertices + 1] = {}, neeEnergyByLength[kMaxChainVertices + 1] = {};
@@ -142,34 +149,6 @@ struct Bootstrap {
   }
 };
 
-// Systematic resampling: `count` ordinals of `energies`, each chosen with probability
-// proportional to its energy (in ordinal order; an ordinal may repeat).
-std::vector<size_t> resample(const std::vector<float>& energies, double total, size_t count, double u) {
-  std::vector<size_t> chosen;
-  chosen.reserve(count);
-  double running = 0;
-  size_t k = 0;
-  for (size_t i = 0; i < energies.size() && k < count; ++i) {
-    running += energies[i];
-    while (k < count && (double(k) + u) / double(count) * total < running) chosen.push_back(i), ++k;
-  }
-  while (k < count && !energies.empty()) chosen.push_back(energies.size() - 1), ++k;  // rounding at the end
-  return chosen;
-}
-
-void appendSeed(SeedStore& to, const SeedStore& from, size_t i, size_t copies) {
-  const uint32_t begin = uint32_t(to.vertices.size());
-  const uint32_t n = from.seeds.vertexCount[i];
-  to.vertices.resize(begin + n);
-  for (uint32_t j = 0; j < n; ++j) to.vertices.copyRow(begin + j, from.vertices, from.seeds.vertexBegin[i] + j);
-  for (size_t c = 0; c < copies; ++c) {
-    const size_t row = to.seeds.size();
-    to.seeds.resize(row + 1);
-    to.seeds.copyRow(row, from.seeds, i);
-    to.seeds.vertexBegin[row] = begin;
-  }
-}
-
 }  // namespace
 
 void validateMltSettings(const RenderSettings& s) {
@@ -188,8 +167,9 @@ void validateMltSettings(const RenderSettings& s) {
 RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
   validateMltSettings(s);
   MltStats& ms = stats.mlt;
-  ErptSettings options = s.erpt;
-  options.expectedDeposit = true;  // MLT's expected-value splatting of current and proposed paths
+  const ErptSettings& options = s.erpt;
+  StepSettings step = stepSettingsOf(options);
+  step.expectedDeposit = true;  // MLT's expected-value splatting of current and proposed paths
   const RgbImage direct = renderDirectPass(scene, s, stats);
 
   RenderSetup setup(scene, s);
@@ -202,7 +182,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   // Uniform lengths until the bootstrap knows better: the domain test only asks whether W > 0.
   const double noEnergy[kMaxChainVertices + 1] = {};
   model.setLengths(noEnergy);
-  const ErptStepContext ctx{MeasureContext{scene, setup.lights, setup.camera, density}, options, &model};
+  const StepConfig ctx{MeasureContext{scene, setup.lights, setup.camera, density}, step, &model};
   auto partial = [&] {
     stats.partial = true;
     stats.spp = 0;
@@ -265,8 +245,10 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   const double mutations = double(options.mutationsPerPixel) * double(s.width) * double(s.height);
   const size_t chains = boot.energies.empty() ? 0 : size_t(std::min<double>(s.mlt.chains, mutations));
   const uint32_t length = chains ? uint32_t(std::max(1.0, std::round(mutations / double(chains)))) : 0;
+  // The chains' starts: systematic resampling of the domain contributions by luminance.
   const std::vector<size_t> chosen =
-      resample(boot.energies, boot.total, chains, uniformDouble(streamKey(s.seed, kResampleStream, 0), 0));
+      systematicPicks(std::vector<double>(boot.energies.begin(), boot.energies.end()), chains,
+                      uniformDouble(streamKey(s.seed, kResampleStream, 0), 0));
   SeedStore starts;
   if (chains > 0) {
     std::vector<uint64_t> again;  // the samples to trace again, ascending
@@ -292,7 +274,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
       const uint64_t j = uint64_t(std::lower_bound(again.begin(), again.end(), o.sample) - again.begin());
       const auto it = byName.find(name(j, o.vertices, o.explicitLight));
       if (it == byName.end()) throw std::logic_error("mlt: a bootstrap path did not trace again identically");
-      appendSeed(starts, retraced, it->second, copies);
+      starts.append(retraced, it->second, copies);
       next += copies;
     }
   }
@@ -304,16 +286,15 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   for (const auto& [name, seconds] : bootStats.stages.all()) stats.stages.add("bootstrap " + name, seconds);
 
   // The chains.
-  options.chainLength = int(std::max<uint32_t>(length, 1));
-  ErptStepContext chainCtx = ctx;
-  chainCtx.settings = options;
+  ChainSettings chainSettings = chainSettingsOf(options);
+  chainSettings.chainLength = int(std::max<uint32_t>(length, 1));
   StageContext largeCtx = setup.ctx;
   largeCtx.seed = streamKey(s.seed, kLargeStepStream, 0);
   largeCtx.spp = 1;
-  const LargeStepSource large(setup.tracer, largeCtx, uint32_t(s.width) * uint32_t(s.height));
-  ErptChains::Config config{chainCtx, s.seed, kErptLaneSlots, ms.energyPerStep, s.stop, setup.pool.threads(),
-                            &mltChooser(), &large};
-  ErptChains machine(setup.tracer, config, setup.film, stats.erpt, stats.stages);
+  const MltPolicy policy(setup.tracer, largeCtx, uint32_t(s.width) * uint32_t(s.height));
+  ChainLanes::Config config{ctx, chainSettings, s.seed, kErptLaneSlots, ms.energyPerStep, s.stop,
+                            setup.pool.threads(), &policy};
+  ChainLanes machine(setup.tracer, config, setup.film, stats.erpt, stats.stages);
   const auto chainStart = std::chrono::steady_clock::now();
   const bool done = chains == 0 || (machine.startChains(starts, float(ms.energyPerStep)) && machine.finish());
   ms.chainSeconds = secondsSince(chainStart);

@@ -2,7 +2,7 @@
 #include <cstdio>
 
 #include "integrator_stats.h"
-#include "erpt/erpt_path.h"
+#include "kernels/erpt_path.h"
 
 namespace erpt {
 

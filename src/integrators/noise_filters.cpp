@@ -1,4 +1,4 @@
-#include "erpt/noise_filters.h"
+#include "integrators/noise_filters.h"
 
 #include <algorithm>
 #include <cmath>

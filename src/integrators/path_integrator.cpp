@@ -18,10 +18,11 @@
 #include <numeric>
 #include <optional>
 
-#include "erpt/film.h"
-#include "erpt/film_splat.h"
-#include "erpt/stages.h"
-#include "erpt/tracer.h"
+#include "core/parallel.h"
+#include "models/film.h"
+#include "models/film_splat.h"
+#include "stages/stages.h"
+#include "tracer/tracer.h"
 #include "path_integrator.h"
 #include "render_setup.h"
 #include "sample_passes.h"

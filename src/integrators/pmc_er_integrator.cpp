@@ -15,11 +15,11 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "erpt/pmc_mixture.h"
-#include "erpt/rng.h"
-#include "erpt/stratified_pool.h"
+#include "stages/pmc_mixture.h"
+#include "core/rng.h"
+#include "integrators/stratified_pool.h"
 #include "erpt_integrator.h"
-#include "erpt/system_memory.h"
+#include "core/system_memory.h"
 #include "pmc_population.h"
 #include "render_setup.h"
 #include "sample_passes.h"
@@ -77,7 +77,7 @@ void validatePmcSettings(const PmcSettings& p, const ErptSettings& e) {
 namespace {
 // Region adaptation: the training population (own seed, own pool) learns the table of
 // mixture weights per region; independent of the render, so the frozen table is too.
-void trainRegionTable(const Scene& scene, const RenderSettings& s, const ErptStepContext& ctx, PmcMixture& mixture,
+void trainRegionTable(const Scene& scene, const RenderSettings& s, const StepConfig& ctx, PmcMixture& mixture,
                       RenderStats& stats) {
   const PmcSettings& p = s.pmc;
   PmcStats& ps = stats.pmc;
@@ -91,7 +91,7 @@ void trainRegionTable(const Scene& scene, const RenderSettings& s, const ErptSte
   tp.adapt = PmcAdapt::Off;
   PmcMixture uniform(tp, s.width, s.height);
   RenderStats trainStats;
-  PmcPopulation trainer(trainSetup, PmcPopulation::Config{ctx, tp, ts.seed, nullptr}, uniform, trainStats);
+  PmcPopulation trainer(trainSetup, PmcPopulation::Config{ctx, chainSettingsOf(s.erpt), tp, ts.seed, nullptr}, uniform, trainStats);
   trainer.run(PoolRounds::all(StratifiedPool{pixels, uint32_t(ts.spp), ts.seed}), p.trainIterations);
   mixture.setRegionTable(trainer.regionSums(), 1.0);
   ps.trainingIterations = trainStats.pmc.trainingIterations;
@@ -126,12 +126,12 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
   FilmDensity density(setup.filter, s.width, s.height);
   // The chain step's view of the kernel: the disk lens and Veach caustic units (sizes from
   // the mixture), the families the path allows (Mixed's), detailed-balance deposits for Balance.
-  ErptSettings chain = s.erpt;
-  chain.strategy = MutationStrategy::Mixed;
-  chain.lensShape = LensShape::Disk;
-  chain.causticAngle = CausticAngle::Veach;
-  chain.flow = p.flow == PmcFlow::Balance ? FlowRule::DetailedBalance : FlowRule::EqualDeposition;
-  const ErptStepContext ctx{MeasureContext{scene, setup.lights, setup.camera, density}, chain};
+  StepSettings step = stepSettingsOf(s.erpt);  // the deposit rule
+  step.strategy = MutationStrategy::Mixed;
+  step.lensShape = LensShape::Disk;
+  step.causticAngle = CausticAngle::Veach;
+  step.flow = p.flow == PmcFlow::Balance ? FlowRule::DetailedBalance : FlowRule::EqualDeposition;
+  const StepConfig ctx{MeasureContext{scene, setup.lights, setup.camera, density}, step};
   const uint32_t pixels = uint32_t(s.width) * uint32_t(s.height);
   PmcMixture mixture(p, s.width, s.height);
   RgbImage direct;
@@ -143,7 +143,7 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
     direct = renderDirectPass(scene, s, stats);
   }
 
-  PmcPopulation population(setup, PmcPopulation::Config{ctx, p, s.seed, &setup.film}, mixture, stats);
+  PmcPopulation population(setup, PmcPopulation::Config{ctx, chainSettingsOf(s.erpt), p, s.seed, &setup.film}, mixture, stats);
   const StratifiedPool pool{pixels, uint32_t(s.spp), streamKey(s.seed, kPoolStream, 0)};
   const uint32_t rank = uint32_t(s.share.rank), ranks = uint32_t(std::max(1, s.share.ranks));
   SamplePassHooks passes;

@@ -3,10 +3,10 @@
 #include <chrono>
 #include <cmath>
 
-#include "erpt/chain_step.h"
-#include "erpt/pmc_resampling.h"
-#include "erpt/rng.h"
-#include "erpt/seed_checks.h"
+#include "stages/chain_step.h"
+#include "integrators/systematic_resampling.h"
+#include "core/rng.h"
+#include "integrators/seed_checks.h"
 #include "path_integrator.h"
 #include "sample_passes.h"
 
@@ -21,17 +21,6 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// Appends seed i of `from` (its row and vertices) to `to`.
-void appendSeedCopy(SeedStore& to, const SeedStore& from, size_t i) {
-  const size_t vb = to.vertices.size(), n = from.seeds.vertexCount[i];
-  to.vertices.resize(vb + n);
-  for (size_t j = 0; j < n; ++j) to.vertices.copyRow(vb + j, from.vertices, from.seeds.vertexBegin[i] + j);
-  const size_t k = to.seeds.size();
-  to.seeds.resize(k + 1);
-  to.seeds.copyRow(k, from.seeds, i);
-  to.seeds.vertexBegin[k] = uint32_t(vb);
-}
-
 // Iterations after the pool is used up: until a member holds at most 10% of what it had.
 int drainIterations(double share) {
   if (share >= 1) return 0;
@@ -42,7 +31,7 @@ int drainIterations(double share) {
 size_t PmcPopulation::bytesPerMember(int components) {
   // The queues, the spare chain row and path for resampling, energy, alpha sums and weights;
   // about as much again for the candidates' seed copies and the pool's path-tracer batch.
-  const size_t member = ErptQueues::bytesPerSlot() + sizeof(ChainQueue::Row) + kMaxChainVertices * sizeof(VertexQueue::Row) +
+  const size_t member = StepQueues::bytesPerSlot() + sizeof(ChainQueue::Row) + kMaxChainVertices * sizeof(VertexQueue::Row) +
                         sizeof(double) + size_t(components) * (sizeof(double) + sizeof(float));
   return 2 * member;
 }
@@ -67,8 +56,8 @@ PmcPopulation::PmcPopulation(const RenderSetup& tracing, const Config& config, P
   stratCount_.assign(pixels, 0.0);
   stratRadius_.assign(pixels, 0.0);
   stratAccept_.assign(pixels, 0.0);
-  filters_.maxConsecutive = uint32_t(config.step.settings.maxConsecutive);
-  if (config.step.settings.pmFilterRadius >= 0) {
+  filters_.maxConsecutive = uint32_t(config.chains.maxConsecutive);
+  if (config.chains.pmFilterRadius >= 0) {
     tally_.assign(pixels, 0);
     filters_.proposalTally = &tally_;
   }
@@ -168,8 +157,8 @@ void PmcPopulation::regenerate(const PoolRounds& rounds, size_t count) {
 }
 
 void PmcPopulation::absorb(SeedStore& batch, const PoolRounds& rounds, size_t first) {
-  const ErptStepContext& ctx = config_.step;
-  const bool excludeDirect = ctx.settings.directSamples > 0;
+  const StepConfig& ctx = config_.step;
+  const bool excludeDirect = config_.chains.directSamples > 0;
   // One candidate per pool position: of its seeds that a chain can hold, one chosen with
   // probability proportional to its energy, carrying their total energy (unbiased: the
   // expected deposit of each seed is its own X_f). Seeds no mutation can move go where they are.
@@ -223,7 +212,7 @@ void PmcPopulation::absorb(SeedStore& batch, const PoolRounds& rounds, size_t fi
       if (config_.film) deposited_ += depositSeedInPlace(ctx.measure.film, batch, picks[k], pickEnergy[k], *config_.film);
       continue;
     }
-    appendSeedCopy(candidates_, batch, picks[k]);
+    candidates_.append(batch, picks[k]);
     candidateEnergy_.push_back(pickEnergy[k]);
     ++pmc_.candidates;
   }
@@ -314,7 +303,7 @@ void PmcPopulation::iterate() {
       const auto t0 = std::chrono::steady_clock::now();
       deposited_ += applyDeposits(q_.chains, q_.proposals, q_.deposits, IndexRange{0, n}, config_.step.measure.film,
                                   *config_.film, filters_);
-      stats_.stages.add("erpt deposit", secondsSince(t0));
+      stats_.stages.add("chain deposit", secondsSince(t0));
     }
     collect(fromX, fromY);
   }

@@ -5,7 +5,7 @@
 //   current path; balance: detailed-balance deposits at y and the proposals);
 //   the next r * population positions of the stratified pool are traced by the wavefront path
 //   tracer (one batch) and become candidates;
-//   members and candidates are resampled by energy into the slots (pmc_resampling.h).
+//   members and candidates are resampled by energy into the slots (systematic_resampling.h).
 // When the positions are used up the population drains for a few iterations without new
 // members (resampled into fewer slots each time, as its energy falls), then every member
 // deposits what it still holds where it stands. A render runs the population once per group
@@ -17,11 +17,12 @@
 #include <functional>
 #include <vector>
 
-#include "erpt/erpt_stages.h"
-#include "erpt/pmc_mixture.h"
+#include "stages/chain_stages.h"
+#include "stages/pmc_mixture.h"
 #include "erpt/pmc_settings.h"
 #include "erpt/render.h"
-#include "erpt/stratified_pool.h"
+#include "integrators/chain_settings.h"
+#include "integrators/stratified_pool.h"
 #include "render_setup.h"
 
 namespace erpt {
@@ -29,7 +30,8 @@ namespace erpt {
 class PmcPopulation {
  public:
   struct Config {
-    ErptStepContext step;  // measure and the ERPT settings the chain step reads
+    StepConfig step;
+    ChainSettings chains;  // the direct-light split and the deposit filters
     PmcSettings pmc;
     uint64_t seed = 0;     // chain streams, candidate choice and the resampling comb
     Film* film = nullptr;  // where deposits go; null: a training population (deposits nothing)
@@ -80,10 +82,10 @@ class PmcPopulation {
   PmcMixture& mixture_;
   RenderStats& stats_;
   PmcStats& pmc_;
-  ErptQueues q_;
+  StepQueues q_;
   ChainQueue spareChains_;
   VertexQueue spareVertices_;
-  ErptCounters counters_;
+  StepCounters counters_;
   DepositFilters filters_;
   size_t poolCursor_ = 0;      // positions of the current run's rounds traced so far
   uint64_t runSeed_ = 0;       // the current run's member streams and resampling comb

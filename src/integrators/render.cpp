@@ -1,3 +1,4 @@
+#include "core/parallel.h"
 #include "erpt/render.h"
 
 #include <algorithm>
@@ -5,9 +6,9 @@
 #include <cmath>
 
 #include "erpt/integrators.h"
-#include "erpt/noise_filters.h"
-#include "erpt/rng.h"
-#include "erpt/tracer.h"
+#include "integrators/noise_filters.h"
+#include "core/rng.h"
+#include "tracer/tracer.h"
 #include "sample_passes.h"
 
 namespace erpt {
@@ -48,7 +49,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
   if (!(s.timeBudget > 0) || s.timeBudget > 1e7) throw UsageError("--time must be in (0, 10000000] seconds");
   const IntegratorModule& module = integratorNamed(s.integrator);
   RenderSettings pass = subRenderSettings(s);
-  if (module.prepareTimedPasses) module.prepareTimedPasses(scene, s, pass, stats);
+  const PassRenderer renderPass = module.timedPasses ? module.timedPasses(scene, s, stats) : PassRenderer(module.render);
   WeightedSum image;
   std::vector<WeightedSum> extras;
   double notRendering = 0;  // time spent in onPass
@@ -72,7 +73,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
     if (module.scaleTimedPass) module.scaleTimedPass(s, pass);
     const Clock::time_point passStart = Clock::now();
     RenderStats ps;
-    const RgbImage img = renderOnce(scene, pass, ps);
+    const RgbImage img = renderPass(scene, pass, ps);
     const double passSeconds = secondsSince(passStart);
     // A stopped pass counts with the sample passes it completed (sample_passes.h).
     if (ps.partial) {

@@ -5,10 +5,11 @@
 #include <memory>
 #include <vector>
 
-#include "erpt/film.h"
+#include "core/parallel.h"
+#include "models/film.h"
 #include "erpt/render.h"
-#include "erpt/stages.h"
-#include "erpt/tracer.h"
+#include "stages/stages.h"
+#include "tracer/tracer.h"
 #include "pixel_order.h"
 
 namespace erpt {

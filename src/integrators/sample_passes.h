@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "erpt/byte_stream.h"
+#include "core/byte_stream.h"
 #include "erpt/render.h"
 #include "path_integrator.h"
 

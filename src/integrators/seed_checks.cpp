@@ -1,4 +1,4 @@
-#include "erpt/seed_checks.h"
+#include "integrators/seed_checks.h"
 
 #include <cmath>
 
@@ -9,7 +9,7 @@ bool seedForChains(const SeedStore& store, size_t i, bool excludeDirect) {
   return !excludeDirect || store.seeds.vertexCount[i] > 3;
 }
 
-InPlaceReason seedSignatureReason(const ErptStepContext& ctx, const SeedStore& store, size_t i) {
+InPlaceReason seedSignatureReason(const StepConfig& ctx, const SeedStore& store, size_t i) {
   const uint32_t n = store.seeds.vertexCount[i];
   if (n > uint32_t(kMaxChainVertices)) return kInPlaceTooLong;
   uint8_t kinds[kMaxChainVertices];
@@ -26,7 +26,7 @@ InPlaceReason seedSignatureReason(const ErptStepContext& ctx, const SeedStore& s
   return none ? kInPlaceNoMutation : kInPlaceReasonCount;
 }
 
-bool seedHasZeroContribution(const ErptStepContext& ctx, const SeedStore& store, size_t i) {
+bool seedHasZeroContribution(const StepConfig& ctx, const SeedStore& store, size_t i) {
   const uint32_t n = store.seeds.vertexCount[i];  // at most kMaxChainVertices (seedSignatureReason)
   PathVertex path[kMaxChainVertices];
   for (uint32_t j = 0; j < n; ++j) loadPathVertex(store.vertices, store.seeds.vertexBegin[i] + j, path[j]);

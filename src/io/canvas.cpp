@@ -1,4 +1,4 @@
-#include "erpt/canvas.h"
+#include "io/canvas.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,10 +1,10 @@
-#include "erpt/checkpoint.h"
+#include "io/checkpoint.h"
 
 #include <cstring>
 
-#include "erpt/byte_stream.h"
+#include "core/byte_stream.h"
 #include "erpt/error.h"
-#include "erpt/file_util.h"
+#include "io/file_util.h"
 #include "erpt/image_io.h"
 
 #ifndef ERPT_VERSION

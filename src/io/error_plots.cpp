@@ -1,4 +1,4 @@
-#include "erpt/error_plots.h"
+#include "io/error_plots.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "erpt/file_util.h"
+#include "io/file_util.h"
 
 #include <filesystem>
 #include <fstream>

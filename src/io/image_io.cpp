@@ -11,7 +11,7 @@
 #include <stdexcept>
 
 #include "erpt/error.h"
-#include "erpt/file_util.h"
+#include "io/file_util.h"
 #include "image_formats.h"
 
 namespace erpt {

@@ -1,4 +1,4 @@
-#include "erpt/tev_display.h"
+#include "io/tev_display.h"
 
 #include <netdb.h>
 #include <sys/socket.h>

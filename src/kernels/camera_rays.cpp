@@ -5,7 +5,7 @@
 
 #include <xsimd/xsimd.hpp>
 
-#include "erpt/camera.h"
+#include "models/camera.h"
 
 namespace erpt {
 

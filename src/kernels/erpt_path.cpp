@@ -4,8 +4,8 @@
 #include <cmath>
 #include <cstdint>
 
-#include "erpt/erpt_path.h"
-#include "erpt/warp.h"
+#include "kernels/erpt_path.h"
+#include "core/warp.h"
 
 namespace erpt {
 

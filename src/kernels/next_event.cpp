@@ -1,6 +1,6 @@
 #include <limits>
 
-#include "erpt/kernels.h"
+#include "kernels/kernels.h"
 
 namespace erpt {
 

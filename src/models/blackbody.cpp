@@ -1,4 +1,4 @@
-#include "erpt/blackbody.h"
+#include "models/blackbody.h"
 
 #include <algorithm>
 #include <cmath>

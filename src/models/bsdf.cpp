@@ -1,10 +1,10 @@
 // The BSDFs: one switch per entry point over the material kind.
-#include "erpt/bsdf.h"
+#include "models/bsdf.h"
 
 #include <algorithm>
 
 #include "coating.h"
-#include "erpt/warp.h"
+#include "core/warp.h"
 
 namespace erpt {
 

@@ -1,5 +1,5 @@
-#include "erpt/camera.h"
-#include "erpt/warp.h"
+#include "models/camera.h"
+#include "core/warp.h"
 
 namespace erpt {
 

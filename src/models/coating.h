@@ -3,7 +3,7 @@
 // camera, eval = f |cos(wo)| without Dirac lobes).
 #pragma once
 
-#include "erpt/bsdf.h"
+#include "models/bsdf.h"
 
 namespace erpt {
 

@@ -1,4 +1,4 @@
-#include "erpt/exact_film.h"
+#include "models/exact_film.h"
 
 #include <cmath>
 

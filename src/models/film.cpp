@@ -1,4 +1,4 @@
-#include "erpt/film.h"
+#include "models/film.h"
 
 namespace erpt {
 

@@ -1,4 +1,4 @@
-#include "erpt/film_density.h"
+#include "models/film_density.h"
 
 #include <cmath>
 

@@ -1,9 +1,9 @@
-#include "erpt/film_splat.h"
+#include "models/film_splat.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "erpt/parallel.h"
+#include "core/parallel.h"
 
 namespace erpt {
 

@@ -1,7 +1,7 @@
 // Fresnel equations and the Beckmann / GGX microfacet distributions (Walter et al. 2007).
 #include <cmath>
 
-#include "erpt/bsdf.h"
+#include "models/bsdf.h"
 
 namespace erpt {
 

@@ -2,7 +2,7 @@
 // the world-space geometry of its prototype triangle.
 #include <algorithm>
 
-#include "erpt/surface.h"
+#include "models/surface.h"
 
 namespace erpt {
 

@@ -1,8 +1,8 @@
-#include "erpt/light_sampler.h"
+#include "models/light_sampler.h"
 
 #include <algorithm>
 
-#include "erpt/warp.h"
+#include "core/warp.h"
 
 namespace erpt {
 

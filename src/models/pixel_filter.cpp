@@ -1,4 +1,4 @@
-#include "erpt/pixel_filter.h"
+#include "models/pixel_filter.h"
 
 #include <algorithm>
 

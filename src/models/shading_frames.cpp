@@ -12,7 +12,7 @@
 //    turned to the side of the unperturbed shading normal.
 #include <cmath>
 
-#include "erpt/surface.h"
+#include "models/surface.h"
 
 namespace erpt {
 

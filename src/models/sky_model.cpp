@@ -1,6 +1,6 @@
 // The Hosek-Wilkie sky in RGB (Hosek and Wilkie 2012, "An analytic model for full spectral
 // sky-dome radiance"), evaluated as Mitsuba 0.6's `sky` emitter does in its RGB build.
-#include "erpt/sky_model.h"
+#include "models/sky_model.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "erpt/spectrum.h"
+#include "models/spectrum.h"
 
 #include <cmath>
 

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <vector>
 
-#include "erpt/spectrum.h"
-#include "erpt/sun_model.h"
+#include "models/spectrum.h"
+#include "models/sun_model.h"
 
 namespace erpt {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "erpt/sun_model.h"
+#include "models/sun_model.h"
 
 namespace erpt {
 

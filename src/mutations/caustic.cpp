@@ -12,8 +12,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "erpt/mutation.h"
-#include "erpt/surface.h"
+#include "mutations/mutation.h"
+#include "models/surface.h"
 #include "path_factors.h"
 #include "start_each.h"
 
@@ -125,12 +125,12 @@ void startVeach(const MeasureContext& c, const CurrentPath& y, float, float, flo
   startAlong(c, y, s, normalize(f.toWorld(Vec3{st * std::cos(phi), st * std::sin(phi), std::cos(theta)})), out);
 }
 
-void startErptRange(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+void startErptRange(const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                     ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
   startEach<true, startErpt>(MutationKind::Caustic, ctx, chains, chainVertices, proposals, rays, range);
 }
 
-void startVeachRange(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+void startVeachRange(const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                      ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
   startEach<true, startVeach>(MutationKind::CausticVeach, ctx, chains, chainVertices, proposals, rays, range);
 }
@@ -153,8 +153,9 @@ float veachRatio(const MeasureContext& c, const CurrentPath& y, const CurrentPat
 }  // namespace
 
 extern const Mutation kCausticMutation{MutationKind::Caustic, MutationKind::Caustic, appliesToCausticPaths, startErptRange,
-                                       causticTailStart, causticContribution, erptRatio};
+                                       causticTailStart, causticContribution, erptRatio, perturbationAcceptance, moveToPerturbation};
 extern const Mutation kCausticVeachMutation{MutationKind::CausticVeach, MutationKind::Caustic, appliesToCausticPaths,
-                                            startVeachRange, causticTailStart, causticContribution, veachRatio};
+                                            startVeachRange, causticTailStart, causticContribution, veachRatio,
+                                            perturbationAcceptance, moveToPerturbation};
 
 }  // namespace erpt

@@ -3,12 +3,13 @@
 // stageShadePath, connectToLight): BSDF sampling with its lobe choice, Russian roulette from
 // depth rrDepth on (survival min(0.95, max component of the throughput times eta^2)), and the light
 // sampler's density for the next-event connection.
-#include "erpt/large_step.h"
+#include "mutations/large_step.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "erpt/bsdf.h"
+#include "models/bsdf.h"
+#include "mutations/mutation.h"
 #include "path_factors.h"
 
 namespace erpt {
@@ -108,5 +109,51 @@ float largeStepWeight(const MeasureContext& c, const LargeStepModel& m, const Pa
   const float w = luminance(t.value) / q;
   return q > 0 && std::isfinite(w) && w > 0 ? w : 0.0f;
 }
+
+// The large step as a mutation unit (mutation.h). Its proposals are not started by the unit:
+// MLT's ProposalPolicy traces them as path-tracer samples (mlt_integrator.cpp); it has no
+// f of its own measure (W compares the path tracer's estimates) and no transition ratio (its
+// density does not depend on y).
+namespace {
+// q = min(1, W(z) / W(y)). W(y) is cached with the chain until a perturbation moves it.
+Acceptance largeStepAcceptance(const StepConfig& ctx, const AcceptSlot& s) {
+  ChainQueue& chains = s.chains;
+  const size_t i = s.i;
+  Acceptance a;
+  if (chains.largeWeight[i] < 0) {
+    const int n = loadChainPath(chains, s.chainVertices, i, s.y);
+    chains.largeWeight[i] = largeStepWeight(ctx.measure, *ctx.largeSteps, s.y, n);
+  }
+  const float wy = chains.largeWeight[i], wz = s.proposals.largeWeight[i];
+  if (!(wy > 0) || !std::isfinite(wy)) {
+    // q(y) = 0: no large step leads to y, so none may leave it either.
+    s.proposals.reason[i] = kRejectIrreversible;
+  } else {
+    a.q = std::min(1.0f, wz / wy);
+  }
+  a.fz = s.proposals.colorAt(i);
+  return a;
+}
+
+// Moves the chain to its large step's path: every vertex, its count and signature.
+void moveToLargeStep(const AcceptSlot& s, const Acceptance&) {
+  ChainQueue& chains = s.chains;
+  const ProposalQueue& proposals = s.proposals;
+  const size_t i = s.i, base = i * kMaxChainVertices;
+  for (int j = 0; j < proposals.vertexCount[i]; ++j)
+    s.chainVertices.copyRow(base + size_t(j), s.proposalVertices, base + size_t(j));
+  chains.vertexCount[i] = proposals.vertexCount[i];
+  chains.signature[i] = proposals.signature[i];
+  chains.largeWeight[i] = proposals.largeWeight[i];
+  chains.fKind[i] = chains.tailKind[i] = uint8_t(MutationKind::None);  // f and the tail in no measure yet
+}
+
+bool appliesToChainPaths(const uint8_t*, int n) { return n >= 2 && n <= kMaxChainVertices; }
+int noTail(const uint8_t*, int n) { return n; }
+}  // namespace
+
+extern const Mutation kLargeStepMutation{MutationKind::LargeStep, MutationKind::LargeStep, appliesToChainPaths,
+                                         /*startRange=*/nullptr, noTail, /*contribution=*/nullptr,
+                                         /*transitionRatio=*/nullptr, largeStepAcceptance, moveToLargeStep};
 
 }  // namespace erpt

@@ -7,8 +7,8 @@
 // square (disk), which it does whenever z lies in y's, and 0 otherwise.
 #include <cmath>
 
-#include "erpt/camera.h"
-#include "erpt/mutation.h"
+#include "models/camera.h"
+#include "mutations/mutation.h"
 #include "path_factors.h"
 #include "start_each.h"
 
@@ -112,12 +112,12 @@ void startDisk(const MeasureContext& c, const CurrentPath& y, float filmX, float
   startAt(c, y, filmX + r * std::cos(phi), filmY + r * std::sin(phi), out);
 }
 
-void startSquareRange(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+void startSquareRange(const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                       ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
   startEach<false, startSquare>(MutationKind::Lens, ctx, chains, chainVertices, proposals, rays, range);
 }
 
-void startDiskRange(const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+void startDiskRange(const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                     ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
   startEach<false, startDisk>(MutationKind::LensDisk, ctx, chains, chainVertices, proposals, rays, range);
 }
@@ -135,8 +135,8 @@ float diskRatio(const MeasureContext&, const CurrentPath& y, const CurrentPath& 
 }  // namespace
 
 extern const Mutation kLensSquareMutation{MutationKind::Lens, MutationKind::Lens, appliesToAnyChainPath, startSquareRange,
-                                          lensTailStart, lensContribution, squareRatio};
+                                          lensTailStart, lensContribution, squareRatio, perturbationAcceptance, moveToPerturbation};
 extern const Mutation kLensDiskMutation{MutationKind::LensDisk, MutationKind::Lens, appliesToAnyChainPath, startDiskRange,
-                                        lensTailStart, lensContribution, diskRatio};
+                                        lensTailStart, lensContribution, diskRatio, perturbationAcceptance, moveToPerturbation};
 
 }  // namespace erpt

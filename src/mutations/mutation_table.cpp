@@ -1,18 +1,17 @@
-// The one place the mutation units are looked up by kind (MLT's large step has no unit: it
-// is not a perturbation of the current path, large_step.h), and the strategies' choice of a
-// mutation family for a path.
+// The one place the mutation units are looked up by kind (the perturbations and MLT's large
+// step), and the strategies' choice of a perturbation family for a path.
 #include <stdexcept>
 
-#include "erpt/mutation.h"
+#include "mutations/mutation.h"
 
 namespace erpt {
 
-extern const Mutation kLensSquareMutation, kLensDiskMutation, kCausticMutation, kCausticVeachMutation;
+extern const Mutation kLensSquareMutation, kLensDiskMutation, kCausticMutation, kCausticVeachMutation, kLargeStepMutation;
 
 namespace {
 // Constant-initialized (addresses only), so a lookup is one indexed load.
 const Mutation* const kUnits[kMutationKindCount] = {nullptr, &kLensSquareMutation, &kLensDiskMutation, &kCausticMutation,
-                                                    &kCausticVeachMutation, nullptr};
+                                                    &kCausticVeachMutation, &kLargeStepMutation};
 }  // namespace
 
 const Mutation& mutationOf(MutationKind kind) {

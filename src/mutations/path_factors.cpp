@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "erpt/bsdf.h"
+#include "models/bsdf.h"
 
 namespace erpt::factors {
 
@@ -90,7 +90,7 @@ float areaFactor(const MeasureContext& c, const PathVertex& from, const PathVert
 // their incoming directions): a constant factor of f for the mutation, so it cancels in the
 // acceptance ratio. It is still multiplied in: its colour is part of the path's colour, which
 // deposits carry, and with it f is the whole density in the mutation's measure, so the f of
-// different mutations can be compared (tests/erpt/erpt_measure_test.cpp).
+// different mutations can be compared (tests/mutations/erpt_measure_test.cpp).
 static Color fixedTail(const MeasureContext& c, const PathVertex* path, int n, int first) {
   Color f(1.0f);
   for (int k = first; k < n; ++k) {

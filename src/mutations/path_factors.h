@@ -3,7 +3,7 @@
 // fixed tail a mutation leaves untouched (docs/erpt-acceptance.md).
 #pragma once
 
-#include "erpt/erpt_path.h"
+#include "kernels/erpt_path.h"
 
 namespace erpt::factors {
 

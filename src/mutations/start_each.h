@@ -5,17 +5,15 @@
 // and the dispatch on the kind in the mutate stage's loop over units.
 #pragma once
 
-#include "erpt/erpt_stages.h"
-#include "erpt/mutation.h"
-#include "erpt/rng.h"
-#include "erpt/tracer.h"
+#include "core/rng.h"
+#include "mutations/mutation.h"
 
 namespace erpt {
 
 // StartOne is a function (a template argument, so the call is direct and can be inlined; a
 // function-pointer argument stays an indirect call per proposal).
 template <bool kReadsVertices, auto StartOne>
-void startEach(MutationKind kind, const ErptStepContext& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+void startEach(MutationKind kind, const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
   uint8_t kinds[kMaxChainVertices];
   PathVertex y[kMaxChainVertices];

@@ -1,7 +1,7 @@
 // Mitsuba's analytic shapes as triangle meshes in object space. The sphere (when not exact,
 // see docs/exact-spheres.md) and the cylinder are tessellated finely and carry exact
 // normals, so neither silhouettes nor shading show facets.
-#include "erpt/mesh_io.h"
+#include "scene/mesh_io.h"
 
 namespace erpt {
 

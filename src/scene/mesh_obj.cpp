@@ -7,8 +7,8 @@
 
 #include <tiny_obj_loader.h>
 
-#include "erpt/file_util.h"
-#include "erpt/mesh_io.h"
+#include "io/file_util.h"
+#include "scene/mesh_io.h"
 #include "obj_statements.h"
 
 namespace erpt {

@@ -13,8 +13,8 @@
 #include <iterator>
 #include <sstream>
 
-#include "erpt/file_util.h"
-#include "erpt/mesh_io.h"
+#include "io/file_util.h"
+#include "scene/mesh_io.h"
 
 namespace erpt {
 

@@ -12,8 +12,8 @@
 #include <fstream>
 #include <iterator>
 
-#include "erpt/file_util.h"
-#include "erpt/mesh_io.h"
+#include "io/file_util.h"
+#include "scene/mesh_io.h"
 
 namespace erpt {
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "erpt/blackbody.h"
+#include "models/blackbody.h"
 
 namespace erpt::xml {
 

@@ -9,7 +9,7 @@
 #include <optional>
 
 #include "erpt/image_io.h"
-#include "erpt/mesh_io.h"
+#include "scene/mesh_io.h"
 #include "erpt/scene_loader.h"
 #include "xml_document.h"
 #include "xml_properties.h"

@@ -1,7 +1,7 @@
 // <bsdf> and <texture> plugins.
 #include <cmath>
 
-#include "erpt/bsdf.h"
+#include "models/bsdf.h"
 #include "erpt/image_io.h"
 #include "referenced_file.h"
 #include "scene_builder.h"

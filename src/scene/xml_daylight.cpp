@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "erpt/environment_map.h"
-#include "erpt/sky_model.h"
-#include "erpt/sun_model.h"
+#include "models/sky_model.h"
+#include "models/sun_model.h"
 #include "scene_builder.h"
 
 namespace erpt::xml {

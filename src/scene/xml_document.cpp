@@ -1,6 +1,6 @@
 #include "xml_document.h"
 
-#include "erpt/file_util.h"
+#include "io/file_util.h"
 
 #include <algorithm>
 #include <cctype>

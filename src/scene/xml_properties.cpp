@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cctype>
 
-#include "erpt/spectrum.h"
+#include "models/spectrum.h"
 
 namespace erpt::xml {
 

@@ -1,6 +1,6 @@
 // <shape> and <emitter> plugins, and the checks every mesh goes through before it joins
 // the scene: finite positions, valid indices, degenerate triangles dropped and counted.
-#include "erpt/mesh_io.h"
+#include "scene/mesh_io.h"
 #include "referenced_file.h"
 #include "scene_builder.h"
 

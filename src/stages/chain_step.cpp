@@ -1,8 +1,8 @@
-#include "erpt/chain_step.h"
+#include "stages/chain_step.h"
 
 #include <atomic>
 
-#include "erpt/parallel.h"
+#include "core/parallel.h"
 
 namespace erpt {
 
@@ -23,7 +23,7 @@ size_t raysInFlight(const RayQueue& rays, IndexRange r) {
 
 // Rows [0, n) of `denseRays` / `denseSlots`: the slots of `q.proposals` in state `state`, with
 // their ray from `from` (row = slot).
-size_t gatherBySlot(ErptQueues& q, const RayQueue& from, uint8_t state) {
+size_t gatherBySlot(StepQueues& q, const RayQueue& from, uint8_t state) {
   q.denseSlots.clear();
   for (size_t i = 0; i < q.chains.size(); ++i) {
     if (q.proposals.state[i] != state) continue;
@@ -34,7 +34,7 @@ size_t gatherBySlot(ErptQueues& q, const RayQueue& from, uint8_t state) {
 }
 
 // Keeps the rows of `denseRays` whose proposal still walks, moved down in order.
-size_t keepWalking(ErptQueues& q) {
+size_t keepWalking(StepQueues& q) {
   size_t kept = 0;
   for (size_t k = 0; k < q.denseSlots.size(); ++k) {
     const uint32_t slot = q.denseSlots[k];
@@ -48,27 +48,27 @@ size_t keepWalking(ErptQueues& q) {
 
 }  // namespace
 
-uint64_t ChainStep::propose(ErptQueues& q) const {
-  forEachRange("erpt mutate", q.chains.size(), grain, [&](IndexRange r) {
-    stageErptMutate(ctx, q.chains, q.chainVertices, q.proposals, q.rays, r, chooser);
+uint64_t ChainStep::propose(StepQueues& q) const {
+  forEachRange("chain mutate", q.chains.size(), grain, [&](IndexRange r) {
+    stageChainMutate(ctx, q.chains, q.chainVertices, q.proposals, q.rays, r, policy);
     for (size_t i = r.begin; i < r.end; ++i) disableRay(q.shadowRays, i);
   }, times);
-  const uint64_t largeRays = largeSteps ? largeSteps->propose(ctx, q, times) : 0;
-  return largeRays + traceAndConnect(q);
+  const uint64_t ownRays = policy ? policy->startOwnProposals(ctx, q, times) : 0;
+  return ownRays + traceAndConnect(q);
 }
 
-uint64_t ChainStep::traceAndConnect(ErptQueues& q) const {
+uint64_t ChainStep::traceAndConnect(StepQueues& q) const {
   const size_t c = q.chains.size();
   std::atomic<uint64_t> rays{0};
   std::atomic<size_t> walking{0};
   // First bounce: nearly every slot has a ray, the queue is traced as it is.
-  forEachRange("erpt intersect", c, grain, [&](IndexRange r) {
+  forEachRange("chain intersect", c, grain, [&](IndexRange r) {
     const size_t traced = raysInFlight(q.rays, r);
     rays += traced;
     if (traced > 0) tracer.intersect(q.rays, q.hits, r, RayCoherence::Incoherent);
   }, times);
-  forEachRange("erpt trace", c, grain, [&](IndexRange r) {
-    walking += stageErptTrace(ctx, q.chains, q.chainVertices, q.proposals, q.proposalVertices, q.rays, q.hits,
+  forEachRange("chain trace", c, grain, [&](IndexRange r) {
+    walking += stageChainTrace(ctx, q.chains, q.chainVertices, q.proposals, q.proposalVertices, q.rays, q.hits,
                               q.shadowRays, r);
   }, times);
   // Later bounces (a walk bounces at most once per vertex of the longest path): dense.
@@ -76,11 +76,11 @@ uint64_t ChainStep::traceAndConnect(ErptQueues& q) const {
     size_t n = gatherBySlot(q, q.rays, kProposalWalking);
     for (int pass = 1; pass < kMaxChainVertices && n > 0; ++pass) {
       rays += n;
-      forEachRange("erpt intersect", n, grain, [&](IndexRange r) {
+      forEachRange("chain intersect", n, grain, [&](IndexRange r) {
         tracer.intersect(q.denseRays, q.denseHits, r, RayCoherence::Incoherent);
       }, times);
-      forEachRange("erpt trace", n, grain, [&](IndexRange r) {
-        stageErptTrace(ctx, q.chains, q.chainVertices, q.proposals, q.proposalVertices, q.denseRays, q.denseHits,
+      forEachRange("chain trace", n, grain, [&](IndexRange r) {
+        stageChainTrace(ctx, q.chains, q.chainVertices, q.proposals, q.proposalVertices, q.denseRays, q.denseHits,
                        q.shadowRays, r, q.denseSlots.data());
       }, times);
       n = keepWalking(q);
@@ -88,16 +88,16 @@ uint64_t ChainStep::traceAndConnect(ErptQueues& q) const {
   }
   const size_t connections = gatherBySlot(q, q.shadowRays, kProposalConnecting);
   rays += connections;
-  forEachRange("erpt connect", connections, grain, [&](IndexRange r) {
-    stageErptConnect(tracer, q.denseRays, q.proposals, r, q.denseSlots.data());
+  forEachRange("chain connect", connections, grain, [&](IndexRange r) {
+    stageChainConnect(tracer, q.denseRays, q.proposals, r, q.denseSlots.data());
   }, times);
   return rays;
 }
 
-void ChainStep::accept(ErptQueues& q, ErptCounters& counters) const {
-  forEachRange("erpt accept", q.chains.size(), grain, [&](IndexRange r) {
-    if (chooser) chooser->selectionRatios(q.chains, q.proposals, r);
-    stageErptAccept(ctx, q.chains, q.chainVertices, q.proposals, q.proposalVertices, q.deposits, counters, r);
+void ChainStep::accept(StepQueues& q, StepCounters& counters) const {
+  forEachRange("chain accept", q.chains.size(), grain, [&](IndexRange r) {
+    if (policy) policy->selectionRatios(q.chains, q.proposals, r);
+    stageChainAccept(ctx, q.chains, q.chainVertices, q.proposals, q.proposalVertices, q.deposits, counters, r);
   }, times);
 }
 

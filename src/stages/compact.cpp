@@ -1,8 +1,8 @@
 // Stable stream compaction of the live slots, in two parallel passes: count survivors per
 // block, then (after an exclusive scan of the block counts) scatter them in order.
-#include "erpt/parallel.h"
-#include "erpt/stages.h"
-#include "erpt/tracer.h"
+#include "core/parallel.h"
+#include "stages/stages.h"
+#include "tracer/tracer.h"
 
 namespace erpt {
 

@@ -1,8 +1,8 @@
 #include <limits>
 
-#include "erpt/stages.h"
-#include "erpt/surface.h"
-#include "erpt/tracer.h"
+#include "stages/stages.h"
+#include "models/surface.h"
+#include "tracer/tracer.h"
 
 namespace erpt {
 

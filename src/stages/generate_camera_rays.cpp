@@ -1,9 +1,9 @@
 #include <algorithm>
 #include <vector>
 
-#include "erpt/rng.h"
-#include "erpt/stages.h"
-#include "erpt/tracer.h"
+#include "core/rng.h"
+#include "stages/stages.h"
+#include "tracer/tracer.h"
 
 namespace erpt {
 

@@ -3,17 +3,17 @@
 #include <cmath>
 #include <vector>
 
-#include "erpt/mlt_stages.h"
-#include "erpt/rng.h"
-#include "erpt/tracer.h"
+#include "stages/mlt_stages.h"
+#include "core/rng.h"
+#include "tracer/tracer.h"
 
 namespace erpt {
 
 namespace {
 
-class MltChooser final : public MutationChooser {
+class MltChooser final : public ProposalPolicy {
  public:
-  void choose(const ErptStepContext& ctx, const ChainQueue& chains, ProposalQueue& proposals, RayQueue& rays,
+  void choose(const StepConfig& ctx, const ChainQueue& chains, ProposalQueue& proposals, RayQueue& rays,
               IndexRange range) const override {
     erptChooser().choose(ctx, chains, proposals, rays, range);
     const float p = ctx.largeSteps->probability;
@@ -43,12 +43,12 @@ void rejectLarge(ProposalQueue& proposals, size_t slot, RejectReason why) {
 
 }  // namespace
 
-const MutationChooser& mltChooser() {
+const ProposalPolicy& mltChooser() {
   static const MltChooser chooser;
   return chooser;
 }
 
-float mltDomainWeight(const ErptStepContext& ctx, const PathVertex* path, int n, float filmX, float filmY) {
+float mltDomainWeight(const StepConfig& ctx, const PathVertex* path, int n, float filmX, float filmY) {
   const LargeStepModel& m = *ctx.largeSteps;
   if (n < m.minVertices || n > m.maxVertices) return 0.0f;
   const int32_t light = path[n - 1].emitter;
@@ -73,7 +73,7 @@ void largeStepTarget(const LargeStepModel& m, const ChainQueue& chains, size_t s
   nee = uniformDouble(key, stepDim(step, kDimPerturb)) < m.neeProbability(vertices);
 }
 
-void stageMltLargeSteps(const ErptStepContext& ctx, const ChainQueue& chains, const SeedStore& samples,
+void stageMltLargeSteps(const StepConfig& ctx, const ChainQueue& chains, const SeedStore& samples,
                         const uint32_t* slotOf, size_t count, ProposalQueue& proposals, VertexQueue& proposalVertices) {
   const LargeStepModel& m = *ctx.largeSteps;
   // What each chain asks of its sample, then the first seed of each sample that matches.

@@ -1,11 +1,11 @@
 // PMC-ER's mixture kernel as the mutate stage's chooser (pmc_mixture.h).
-#include "erpt/pmc_mixture.h"
+#include "stages/pmc_mixture.h"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "erpt/rng.h"
+#include "core/rng.h"
 
 namespace erpt {
 
@@ -59,7 +59,7 @@ const float* PmcMixture::weightsFor(size_t slot, float x, float y) const {
   return uniform_.data();
 }
 
-void PmcMixture::choose(const ErptStepContext& ctx, const ChainQueue& chains, ProposalQueue& proposals, RayQueue& rays,
+void PmcMixture::choose(const StepConfig& ctx, const ChainQueue& chains, ProposalQueue& proposals, RayQueue& rays,
                         IndexRange range) const {
   uint8_t kinds[kMaxChainVertices];
   const int k = components();

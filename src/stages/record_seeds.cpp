@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "erpt/stages.h"
+#include "stages/stages.h"
 
 namespace erpt {
 

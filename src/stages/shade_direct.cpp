@@ -1,10 +1,10 @@
 #include <limits>
 
-#include "erpt/bsdf.h"
-#include "erpt/rng.h"
-#include "erpt/stages.h"
-#include "erpt/surface.h"
-#include "erpt/tracer.h"
+#include "models/bsdf.h"
+#include "core/rng.h"
+#include "stages/stages.h"
+#include "models/surface.h"
+#include "tracer/tracer.h"
 
 namespace erpt {
 

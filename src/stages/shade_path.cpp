@@ -2,10 +2,10 @@
 // and Russian roulette for every live slot.
 #include <limits>
 
-#include "erpt/erpt_path.h"
-#include "erpt/rng.h"
-#include "erpt/stages.h"
-#include "erpt/tracer.h"
+#include "kernels/erpt_path.h"
+#include "core/rng.h"
+#include "stages/stages.h"
+#include "tracer/tracer.h"
 
 namespace erpt {
 

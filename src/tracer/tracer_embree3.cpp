@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "erpt/surface.h"
-#include "erpt/tracer.h"
+#include "models/surface.h"
+#include "tracer/tracer.h"
 #include "untraceable_rays.h"
 
 namespace erpt {

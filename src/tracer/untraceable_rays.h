@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "erpt/queues.h"
+#include "core/queues.h"
 
 namespace erpt {
 

@@ -8,7 +8,7 @@
 #include <limits>
 #include <sstream>
 
-#include "erpt/error_plots.h"
+#include "io/error_plots.h"
 #include "erpt/image_io.h"
 #include "support/test_support.h"
 

@@ -9,10 +9,10 @@
 #include <cmath>
 #include <vector>
 
-#include "erpt/erpt_stages.h"
-#include "erpt/mlt_stages.h"
-#include "erpt/queues.h"
-#include "erpt/rng.h"
+#include "stages/chain_stages.h"
+#include "stages/mlt_stages.h"
+#include "core/queues.h"
+#include "core/rng.h"
 
 namespace erpt {
 namespace {

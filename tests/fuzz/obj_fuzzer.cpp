@@ -1,5 +1,5 @@
 // Fuzz target: the Wavefront OBJ reader.
-#include "erpt/mesh_io.h"
+#include "scene/mesh_io.h"
 #include "fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

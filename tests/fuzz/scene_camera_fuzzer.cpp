@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "erpt/camera.h"
+#include "models/camera.h"
 #include "erpt/scene_loader.h"
-#include "erpt/tracer.h"
+#include "tracer/tracer.h"
 #include "fuzz_input.h"
 
 namespace {

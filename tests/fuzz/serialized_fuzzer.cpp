@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "erpt/mesh_io.h"
+#include "scene/mesh_io.h"
 #include "fuzz_input.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

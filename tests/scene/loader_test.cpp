@@ -253,7 +253,7 @@ TEST(Loader, ShapesAndFlipNormals) {
     <shape type="disk"/>
     <shape type="sphere"><float name="radius" value="2"/><point name="center" value="1, 0, 0"/></shape>
   </scene>)";
-  LoadOptions tessellate;  // exact spheres: tests/render/exact_sphere_test.cpp
+  LoadOptions tessellate;  // exact spheres: tests/tracer/exact_sphere_test.cpp
   tessellate.tessellateSpheres = true;
   Scene s = loadScene(dir.write("s.xml", xml), tessellate);
   ASSERT_EQ(s.shapes.size(), 3u);

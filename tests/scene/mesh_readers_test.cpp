@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "erpt/mesh_io.h"
+#include "scene/mesh_io.h"
 #include "support/mesh_bytes.h"
 
 namespace erpt {

@@ -3,10 +3,10 @@
 
 #include <algorithm>
 
-#include "erpt/camera.h"
+#include "models/camera.h"
 #include "erpt/scene_loader.h"
-#include "erpt/stages.h"
-#include "erpt/tracer.h"
+#include "stages/stages.h"
+#include "tracer/tracer.h"
 #include "support/test_support.h"
 
 namespace erpt {

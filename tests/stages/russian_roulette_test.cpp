@@ -6,10 +6,10 @@
 
 #include <limits>
 
-#include "erpt/camera.h"
+#include "models/camera.h"
 #include "erpt/scene_loader.h"
-#include "erpt/stages.h"
-#include "erpt/tracer.h"
+#include "stages/stages.h"
+#include "tracer/tracer.h"
 #include "support/test_support.h"
 
 namespace erpt {

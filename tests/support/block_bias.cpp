@@ -10,7 +10,7 @@
 #include <sstream>
 #include <vector>
 
-#include "erpt/checkpoint.h"
+#include "io/checkpoint.h"
 #include "support/image_stats.h"
 #include "support/test_support.h"
 

@@ -13,7 +13,7 @@
 #include <string>
 
 #include "erpt/math.h"
-#include "erpt/rng.h"
+#include "core/rng.h"
 
 namespace erpt::test {
 

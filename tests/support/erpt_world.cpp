@@ -1,8 +1,8 @@
 #include "support/erpt_world.h"
 
-#include "erpt/chain_step.h"
+#include "stages/chain_step.h"
 #include "erpt/render.h"
-#include "erpt/rng.h"
+#include "core/rng.h"
 
 namespace erpt::test {
 
@@ -30,8 +30,8 @@ ErptWorld::ErptWorld(const std::string& sceneFile, int size, int spp, FilterKind
   render(scene, s, stats);
 }
 
-ErptStepContext ErptWorld::stepContext(MutationStrategy strategy) const {
-  ErptStepContext c{measure(), ErptSettings{}};
+StepConfig ErptWorld::stepContext(MutationStrategy strategy) const {
+  StepConfig c{measure(), StepSettings{}};
   c.settings.strategy = strategy;
   return c;
 }
@@ -53,7 +53,7 @@ size_t ChainQueues::loadSeeds(const ErptWorld& w, uint32_t chainLength, float en
   return slot;
 }
 
-void ChainQueues::propose(const ErptWorld& world, const ErptStepContext& ctx, const MutationChooser* chooser) {
+void ChainQueues::propose(const ErptWorld& world, const StepConfig& ctx, const ProposalPolicy* chooser) {
   ChainStep{*world.tracer, ctx, nullptr, 256, chooser}.propose(*this);
 }
 

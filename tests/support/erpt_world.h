@@ -5,9 +5,9 @@
 #include <memory>
 #include <string>
 
-#include "erpt/erpt_stages.h"
+#include "stages/chain_stages.h"
 #include "erpt/scene_loader.h"
-#include "erpt/tracer.h"
+#include "tracer/tracer.h"
 
 namespace erpt::test {
 
@@ -31,15 +31,15 @@ struct ErptWorld {
   ErptWorld(const std::string& sceneFile, int size, int spp, FilterKind filter, uint64_t seed = 1,
             ThinLens lens = {});
   MeasureContext measure() const { return {scene, *lights, *camera, *density}; }
-  ErptStepContext stepContext(MutationStrategy strategy) const;
+  StepConfig stepContext(MutationStrategy strategy) const;
   // The seed's path as PathVertex values.
   int seedPath(size_t seed, PathVertex* out) const;
 };
 
 // The library's chain queues, and the library's chain step stopped before accept, so tests can
 // look between the stages.
-struct ChainQueues : ErptQueues {
-  using ErptQueues::ErptQueues;
+struct ChainQueues : StepQueues {
+  using StepQueues::StepQueues;
   // Starts chains in slots 0, 1, ... at the world's seeds in order, skipping seeds too long
   // for a chain or without energy, until the queue is full; chain keys streamKey(keySeed,
   // seed, 0). Returns how many were loaded.
@@ -48,7 +48,7 @@ struct ChainQueues : ErptQueues {
                    size_t stride = 1);
   // ChainStep::propose: mutate -> (intersect -> trace)* -> connect; stops before accept.
   // `chooser`: the mutate stage's choice (null: ERPT's).
-  void propose(const ErptWorld& world, const ErptStepContext& ctx, const MutationChooser* chooser = nullptr);
+  void propose(const ErptWorld& world, const StepConfig& ctx, const ProposalPolicy* chooser = nullptr);
 };
 
 }  // namespace erpt::test

@@ -4,9 +4,9 @@
 
 #include <random>
 
-#include "erpt/bsdf.h"
-#include "erpt/camera.h"
-#include "erpt/surface.h"
+#include "models/bsdf.h"
+#include "models/camera.h"
+#include "models/surface.h"
 
 namespace erpt::test {
 

@@ -9,7 +9,7 @@
 
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
-#include "erpt/tracer.h"
+#include "tracer/tracer.h"
 #include "support/test_support.h"
 
 namespace erpt {

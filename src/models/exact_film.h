@@ -1,0 +1,62 @@
+// A film whose sums do not depend on the order of the adds. ERPT's chain lanes (chain_lanes.h)
+// deposit into it from several threads at once, and the image must be the same bits for any
+// thread count and from run to run. Floating-point sums are not associative (a double sum of
+// float deposits is exact only while the pixel's total stays within 2^29 of each deposit, which
+// a long render with a tent filter's small edge weights exceeds), integer sums are: each channel
+// of each pixel counts multiples of `unit`, every add rounds its value to the nearest count and
+// adds it atomically.
+//
+// The owner picks unit = 2^-24 e_d (ERPT's deposit energy): a deposit's rounding error is at
+// most 2^-25 e_d, below a float's precision of the deposit itself, and a pixel holds about
+// 2^39 e_d. Values above kMaxCounts (2^16 e_d: only the chains of a capped seed far above e_d)
+// are refused by fits(); the caller adds those to a double film in a fixed order instead, so
+// the counts cannot overflow.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/byte_stream.h"
+#include "erpt/image_io.h"
+
+namespace erpt {
+
+class ExactFilm {
+ public:
+  // concurrent: add() may be called from several threads at once.
+  ExactFilm(int width, int height, double unit, bool concurrent);
+  // Whether c (at any splat weight <= 1) may be added here.
+  bool fits(Color c) const {
+    const float m = std::max(std::max(std::abs(c.x), std::abs(c.y)), std::abs(c.z));
+    return double(m) * perUnit_ < kMaxCounts;  // false for NaN too
+  }
+  // Adds c * weight to the pixel (thread-safe when concurrent). c must fit.
+  void add(uint32_t pixel, Color c, float weight);
+  // image += sums / samplesPerPixel (image: width x height).
+  void addTo(RgbImage& image, double samplesPerPixel) const;
+  double unit() const { return unit_; }
+  void save(ByteWriter& w) const;
+  void load(ByteReader& r);
+  // Split renders: the counts become their total over the processes. `sum` adds vectors of
+  // doubles (Film::reduce's); each count travels as two exact 32-bit halves.
+  template <class Sum>
+  void reduce(const Sum& sum) {
+    std::vector<double> halves = splitCounts();
+    sum(halves);
+    joinCounts(halves);
+  }
+
+  static constexpr double kMaxCounts = double(uint64_t(1) << 40);
+
+ private:
+  std::vector<double> splitCounts() const;
+  void joinCounts(const std::vector<double>& halves);
+  int width_, height_;
+  double unit_, perUnit_;
+  bool concurrent_;
+  std::vector<int64_t> counts_;  // 3 per pixel
+};
+
+}  // namespace erpt

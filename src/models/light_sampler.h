@@ -1,0 +1,84 @@
+// Chooses emitters by power, then a point on the chosen one. Triangles: uniformly by area.
+// Spheres seen from outside: uniformly in the cone of directions the sphere subtends (the
+// visible cap only, never the hidden half), otherwise (a reference point inside, or a sphere
+// that emits inwards) uniformly by area. An emissive primitive's power is
+// pi * area * lum(radiance), so within one uniformly bright area light the choice is
+// uniform by area; point lights weigh 4 pi lum(intensity); the constant environment weighs
+// 4 pi^2 R^2 lum(radiance) for the scene's bounding radius R (pbrt's estimate), a directional
+// light pi R^2 lum(irradiance).
+// ERPT never samples lights after the seed pass (its mutations keep the light vertex or trace
+// towards it), so the choice of technique here only changes the seeds' variance.
+#pragma once
+
+#include <vector>
+
+#include "models/surface.h"
+
+namespace erpt {
+
+struct LightSample {
+  Vec3 position;     // on the emitter (for the environment: far along `direction`)
+  Vec3 normal;       // emitter surface normal (area lights)
+  Vec3 direction;    // unit vector from the reference point towards the light
+  float distance;    // to the light point (infinite lights: +inf)
+  Color radiance;    // radiance arriving along -direction (point light: intensity / d^2)
+  float pdf;         // solid angle pdf at the reference point (0 for a point light: a Dirac)
+  float pdfLight;    // in the light's own measure: area lights p_light * p_area (area measure),
+                     // point lights the pick probability, the environment its solid-angle pdf
+  bool delta;        // point light: cannot be hit by BSDF sampling
+  bool environment;
+  int emitter = -1;  // index into Scene::emitters
+};
+
+class LightSampler {
+ public:
+  explicit LightSampler(const Scene& scene);
+  bool empty() const { return cdf_.empty(); }
+  // Samples a light as seen from `ref`; false if the sample carries nothing.
+  bool sample(Vec3 ref, double uPick, float u1, float u2, LightSample& out) const;
+  // Solid-angle pdf at `ref` that sample() picks the surface point `light` (a ray from ref
+  // hit it).
+  float pdfSolidAngle(const SurfacePoint& light, Vec3 ref) const;
+  // Solid-angle pdf that sample() picks the environment along world direction `direction`.
+  float pdfEnvironment(Vec3 direction) const;
+  // Area-measure density at point p (normal n) of `primitive` of sample() from `ref`
+  // (p_light * p_area).
+  float pdfArea(uint32_t primitive, Vec3 ref, Vec3 p, Vec3 n) const;
+  float pickProbabilityOfEmitter(int emitter) const;
+  // pdfArea for a point of area emitter `emitter` (a triangle mesh or a sphere), which every
+  // primitive of a uniformly bright emitter shares; 0 for an emitter sample() never picks.
+  float pdfAreaOfEmitter(int emitter, Vec3 ref, Vec3 p, Vec3 n) const;
+  // Radiance an area light emits from surface point `sp` towards direction `w` (one-sided:
+  // along the geometric normal's side).
+  Color emitted(const SurfacePoint& sp, Vec3 w) const;
+  const Scene& scene() const { return scene_; }
+
+ private:
+  enum class Kind { Triangle, Sphere, Point, Environment, Directional };
+  struct Item {
+    Kind kind;
+    uint32_t index;  // primitive id (triangles, spheres) or emitter index
+    float area;
+  };
+  // 1 - cos of the half-angle of the cone sphere `sphere` subtends at `ref`, when sample()
+  // samples that cone from there; 0 when it samples the sphere by area instead.
+  float sphereCone(uint32_t sphere, Vec3 ref) const;
+  // The probability of picking a primitive's light (0 for one that does not emit).
+  float pickProbability(uint32_t primitive) const;
+  bool sampleTriangle(const Item& item, float prob, Vec3 ref, float u1, float u2, LightSample& out) const;
+  bool sampleSphere(const Item& item, float prob, Vec3 ref, float u1, float u2, LightSample& out) const;
+  // Finishes an area-measure sample at point p, normal n of `primitive`.
+  bool finishAreaSample(uint32_t primitive, float pdfArea, Vec3 ref, Vec3 p, Vec3 n, LightSample& out) const;
+  const Scene& scene_;
+  std::vector<Item> items_;
+  std::vector<float> cdf_;  // normalized, cdf_.back() == 1
+  std::vector<float> primitiveProbability_;  // per world primitive id (0 if not emissive; instanced ids are past it)
+  std::vector<float> emitterProbability_;   // per point / environment emitter
+  std::vector<int64_t> emitterPrimitive_;   // per emitter: one of its light-sampled primitives, -1 none
+  float environmentProbability_ = 0;
+  const Emitter* environment_ = nullptr;  // the environment emitter, when it can be picked
+  float sceneRadius_ = 1;
+  Vec3 sceneCenter_;
+};
+
+}  // namespace erpt

@@ -1,0 +1,50 @@
+// What every stage of a chain step and every mutation unit reads: the scene's measure context,
+// the step's settings, and the random dimensions of a step.
+#pragma once
+
+#include <cstdint>
+
+#include "erpt/erpt_settings.h"
+#include "kernels/erpt_path.h"
+
+namespace erpt {
+
+struct LargeStepModel;
+
+// The user's options that the stages and units read (defaults: ErptSettings', declared there).
+struct StepSettings {
+  MutationStrategy strategy = ErptSettings{}.strategy;
+  float lensRadius = ErptSettings{}.lensRadius;
+  LensShape lensShape = ErptSettings{}.lensShape;
+  CausticAngle causticAngle = ErptSettings{}.causticAngle;
+  FlowRule flow = ErptSettings{}.flow;  // DetailedBalance: chains never move
+  bool expectedDeposit = ErptSettings{}.expectedDeposit;
+};
+inline StepSettings stepSettingsOf(const ErptSettings& s) {
+  return StepSettings{s.strategy, s.lensRadius, s.lensShape, s.causticAngle, s.flow, s.expectedDeposit};
+}
+
+struct StepConfig {
+  MeasureContext measure;
+  StepSettings settings;
+  // MLT: the large step's model, which the accept stage needs for W(y) (null: no large steps).
+  const LargeStepModel* largeSteps = nullptr;
+  // The mutation units the settings' lens shape and caustic angle choose for the two families.
+  MutationKind lensKind() const { return settings.lensShape == LensShape::Disk ? MutationKind::LensDisk : MutationKind::Lens; }
+  MutationKind causticKind() const {
+    return settings.causticAngle == CausticAngle::Veach ? MutationKind::CausticVeach : MutationKind::Caustic;
+  }
+};
+
+// Random dimensions of one chain step (stream key = the chain's key, dimension =
+// step * kStepDims + use). Direction perturbations at vertex j use kDimPerturb + 2j, +1.
+// kDimComponent: the mixture component (PMC-ER's radius), after the last perturbation's.
+// kDimLargeStep: MLT's coin for a large step; a large step then draws its pixel, path length
+// and technique from kDimStart1, kDimStart2 and kDimPerturb (no perturbation uses them then).
+enum StepDim : uint32_t {
+  kDimStrategy = 0, kDimAccept, kDimStart1, kDimStart2, kDimPerturb, kDimLargeStep = 28, kDimComponent = 30, kStepDims = 32
+};
+static_assert(kDimPerturb + 2 * kMaxChainVertices <= kDimLargeStep, "step dimensions overlap");
+inline uint32_t stepDim(uint32_t step, uint32_t use) { return step * kStepDims + use; }
+
+}  // namespace erpt

@@ -1,0 +1,86 @@
+// Stage kernels: each processes one index range of its queues (forEachRange calls them
+// across threads). A stage reads and writes only the queues it is given.
+#pragma once
+
+#include "models/camera.h"
+#include "kernels/kernels.h"
+#include "models/light_sampler.h"
+#include "models/pixel_filter.h"
+#include "core/queues.h"
+#include "core/seeds.h"
+
+namespace erpt {
+
+// What stages read but never write.
+struct StageContext {
+  const Scene& scene;
+  const Camera& camera;
+  const PixelFilter& filter;
+  const LightSampler& lights;
+  uint64_t seed;
+  int width;
+  int spp;
+  int maxDepth;
+  int rrDepth = 5;  // Russian roulette from this path depth on (Mitsuba's default)
+};
+
+// Random-number dimensions of one camera sample (stream key = (pixel, sample)): two for the
+// film position, then eight per bounce, so every number is addressed by (depth, use).
+constexpr uint32_t kDimFilmX = 0, kDimFilmY = 1;
+// The thin lens's disk sample: far from the per-bounce dimensions (a counter-based stream has
+// them all), so pinhole renders keep their numbers.
+constexpr uint32_t kDimLensX = 0x7fff0000u, kDimLensY = 0x7fff0001u;
+enum BounceDim : uint32_t { kLightPick = 0, kLight1, kLight2, kLobe, kBsdf1, kBsdf2, kRoulette, kBounceDims = 8 };
+inline uint32_t bounceDim(uint32_t depth, BounceDim use) { return 2 + kBounceDims * (depth - 1) + use; }
+
+uint64_t sampleKey(uint64_t seed, uint32_t pixel, uint32_t sample);
+
+// Camera rays for the samples (pixel[i], sample[i]), i in range: film positions stratified
+// per pixel (Latin hypercube over the pixel's samples) and importance-sampled from the pixel
+// filter.
+// filmX/filmY (optional) receive the film positions.
+void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixel, const uint32_t* sample, RayQueue& rays,
+                             IndexRange range, float* filmX = nullptr, float* filmY = nullptr);
+
+// Seed recording: the batch's vertex history and where this bounce's vertices start (the
+// vertex of slot k is base + k). vertices == nullptr: not recording.
+struct VertexHistory {
+  VertexQueue* vertices = nullptr;
+  size_t base = 0;
+};
+
+// Path tracer: shades the hits of the live slots in range: adds MIS-weighted emission, sets
+// up next-event shadow rays (contribution kept in the slot) and the next ray in place of the
+// current one; clears `alive` for paths that end (escaped, absorbed, roulette, max depth).
+// When recording, also writes each hit to the vertex history and notes in the slot what the
+// bounce's contributions were made of.
+void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& slots, RayQueue& rays,
+                    const HitQueue& hits, RayQueue& shadowRays, VertexHistory history, IndexRange range);
+
+// After the shadow stage: appends a seed for every contribution of this bounce (emission
+// found by the BSDF sample; unoccluded next-event connection), in slot order.
+void stageRecordSeeds(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots, const HitQueue& hits,
+                      const RayQueue& shadowRays, const VertexHistory& history, size_t live, SeedStore& store);
+
+// Adds the next-event contribution of every slot whose shadow ray was not occluded.
+void stageShadowResolve(const RayQueue& shadowRays, const PathSlotQueue& slots, PathQueue& paths, IndexRange range);
+
+// Stable compaction: keeps the slots with alive != 0, in order, moving their path ids and
+// rays to the front of `outSlots` / `outRays` (the per-bounce scratch columns of a slot do
+// not move). Returns the number kept. `endedPaths` (optional, room for `count`) receives the
+// path ids of the other slots, in order.
+size_t stageCompact(const PathSlotQueue& slots, const RayQueue& rays, PathSlotQueue& outSlots, RayQueue& outRays,
+                    size_t count, size_t grain, uint32_t* endedPaths = nullptr);
+
+// Direct lighting at the first hit: adds emission seen directly, fills `shadowRays` with
+// next-event rays (contribution kept in samples.shadow*) and `bsdfRays` with BSDF-sampled
+// rays (weight and pdf kept in samples.bsdf*). Unused rays are disabled.
+void stageShadeDirect(const StageContext& ctx, const RayQueue& cameraRays, const HitQueue& hits,
+                      DirectSampleQueue& samples, RayQueue& shadowRays, RayQueue& bsdfRays, IndexRange range);
+
+// After tracing: adds unoccluded next-event contributions and MIS-weighted emission found by
+// the BSDF rays.
+void stageGatherDirect(const StageContext& ctx, const RayQueue& shadowRays, const RayQueue& bsdfRays,
+                       const HitQueue& bsdfHits, DirectSampleQueue& samples, IndexRange range);
+
+}  // namespace erpt
