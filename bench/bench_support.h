@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/queues.h"
+#include "tracer/ray_queues.h"
 #include "erpt/scene.h"
 
 namespace erpt::bench {

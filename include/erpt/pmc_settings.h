@@ -36,6 +36,9 @@ struct PmcSettings {
   float causticProb = 0.9f;       // gamma_caustic where the caustic perturbation applies
   int regionSize = 16;            // Region adaptation: square regions of this many pixels
   int trainIterations = 4;        // Region adaptation: iterations of the training population
+  // When the pool is used up, the population iterates until a member holds at most this share
+  // of its energy, then deposits the rest where it stands.
+  double drainRemainder = 0.1;
 };
 
 struct PmcStats {

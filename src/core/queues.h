@@ -1,4 +1,4 @@
-// SoA queue types built from queue_fields.h.
+// SoA queue types built from queue_fields.h: the path tracer's paths, vertices and seeds.
 #pragma once
 
 #include "core/queue_fields.h"
@@ -6,8 +6,6 @@
 
 namespace erpt {
 
-ERPT_SOA_STRUCT(RayQueue, ERPT_RAY_FIELDS)
-ERPT_SOA_STRUCT(HitQueue, ERPT_HIT_FIELDS)
 ERPT_SOA_STRUCT(DirectSampleQueue, ERPT_DIRECT_SAMPLE_FIELDS)
 ERPT_SOA_STRUCT(PathQueue, ERPT_PATH_FIELDS)
 ERPT_SOA_STRUCT(PathSlotQueue, ERPT_PATH_SLOT_FIELDS)
@@ -15,9 +13,6 @@ ERPT_SOA_STRUCT(VertexQueue, ERPT_VERTEX_FIELDS)
 // A path vertex as a plain value (ERPT's chains): loadPathVertex(queue, i), storePathVertex().
 ERPT_SOA_VIEW(PathVertex, VertexQueue, ERPT_PATH_VERTEX_FIELDS)
 ERPT_SOA_STRUCT(SeedQueue, ERPT_SEED_FIELDS)
-ERPT_SOA_STRUCT(ChainQueue, ERPT_CHAIN_FIELDS)
-ERPT_SOA_STRUCT(ProposalQueue, ERPT_PROPOSAL_FIELDS)
-ERPT_SOA_STRUCT(DepositQueue, ERPT_DEPOSIT_FIELDS)
 
 enum VertexKind : uint8_t { kEyeVertex = 0, kNonSpecularVertex, kSpecularVertex, kLightVertex, kEnvironmentVertex };
 

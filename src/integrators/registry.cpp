@@ -1,12 +1,12 @@
 // The only place that maps an integrator's name to its module (include/erpt/integrators.h).
 #include "erpt/integrators.h"
 
-#include "direct_integrator.h"
+#include "integrators/direct/direct_integrator.h"
 #include "erpt/error.h"
-#include "erpt_integrator.h"
-#include "mlt_integrator.h"
-#include "path_integrator.h"
-#include "pmc_er_integrator.h"
+#include "integrators/erpt/erpt_integrator.h"
+#include "integrators/mlt/mlt_integrator.h"
+#include "integrators/path/path_integrator.h"
+#include "integrators/pmc_er/pmc_er_integrator.h"
 
 namespace erpt {
 

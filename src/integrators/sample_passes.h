@@ -16,7 +16,7 @@
 
 #include "core/byte_stream.h"
 #include "erpt/render.h"
-#include "path_integrator.h"
+#include "integrators/path/path_integrator.h"
 
 namespace erpt {
 

@@ -19,6 +19,7 @@
 #include <limits>
 
 #include "core/queues.h"
+#include "mutations/chain_queues.h"
 #include "kernels/erpt_path.h"
 #include "mutations/step_config.h"
 #include "tracer/tracer.h"

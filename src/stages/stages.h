@@ -7,6 +7,7 @@
 #include "models/light_sampler.h"
 #include "models/pixel_filter.h"
 #include "core/queues.h"
+#include "tracer/ray_queues.h"
 #include "core/seeds.h"
 
 namespace erpt {

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "core/queues.h"
+#include "tracer/ray_queues.h"
 #include "erpt/scene.h"
 
 namespace erpt {

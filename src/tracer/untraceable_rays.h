@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/queues.h"
+#include "tracer/ray_queues.h"
 
 namespace erpt {
 

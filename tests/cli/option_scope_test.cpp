@@ -81,6 +81,7 @@ const OptionCase kOptions[] = {
     {"--caustic-prob", "0.3", Effect::ChangesImage},
     {"--pmc-region", "4", Effect::ChangesImage},
     {"--pmc-train-iterations", "2", Effect::ChangesImage},
+    {"--pmc-drain", "1", Effect::ChangesImage},
     {"--large-step-prob", "0.6", Effect::ChangesImage},
     {"--bootstrap", "4", Effect::ChangesImage},
     {"--chains", "8", Effect::ChangesImage},

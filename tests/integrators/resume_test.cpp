@@ -216,7 +216,7 @@ TEST(StatisticalErpt, StoppedRenderIsUnbiasedAtThePassesDone) {
 // flight between groups): a render of two groups against the path tracer, block by block.
 // Equal deposition, region adaptation, every path by PMC-ER; a population of 1000 makes some
 // 45 iterations per group here. (This is also the suite's whole-render test of that
-// configuration on the default scene: tests/integrators/pmc_render_test.cpp has the others.) A stopped
+// configuration on the default scene: tests/integrators/pmc_er/pmc_render_test.cpp has the others.) A stopped
 // PMC-ER render is the image of the groups it completed (Resume.AStopInsideAGroup... above);
 // that a subset of the passes is unbiased, StatisticalResume.StoppedPathRender shows for the
 // camera samples PMC-ER's pool shares. It is not stopped here: with 12 runs of this scene a

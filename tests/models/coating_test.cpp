@@ -229,7 +229,7 @@ RgbImage renderWith(const Scene& scene, const std::string& integrator, int spp, 
 // 0.95-1.04 of the path tracer's on this scene and 0.96-1.03 on tests/data/blend-box.xml over
 // seeds). This guards each integrator against failing on the new kinds or gross bias; the
 // sharper check of ERPT's vertex classes is the block-by-block test in
-// tests/integrators/erpt_block_bias_test.cpp.
+// tests/integrators/erpt/erpt_block_bias_test.cpp.
 TEST(StatisticalCoating, SceneRendersAlikeInEveryIntegrator) {
   const Scene scene = loadScene(test::sourceDir() + "/tests/data/coating.xml");
   EXPECT_TRUE(scene.warnings.messages.empty()) << scene.warnings.messages.front();

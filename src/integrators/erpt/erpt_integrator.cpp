@@ -9,18 +9,18 @@
 //      (sample_passes.h), streams its seeds batch by batch into the chain machine
 //      (chain_lanes.h), which starts floor(U + e / (m e_d)) chains per seed and runs them,
 //      to the end after each group of passes; pixel value = sum of deposits / passes done.
-#include "erpt_integrator.h"
+#include "integrators/erpt/erpt_integrator.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
-#include "direct_integrator.h"
+#include "integrators/direct/direct_integrator.h"
 #include "core/rng.h"
 #include "integrators/chain_lanes.h"
 #include "integrators/noise_filters.h"
 #include "integrators/seed_checks.h"
-#include "path_integrator.h"
+#include "integrators/path/path_integrator.h"
 #include "render_setup.h"
 #include "chain_options.h"
 #include "sample_passes.h"

@@ -22,7 +22,7 @@
 #include "erpt/pmc_settings.h"
 #include "erpt/render.h"
 #include "integrators/chain_settings.h"
-#include "integrators/stratified_pool.h"
+#include "integrators/pmc_er/stratified_pool.h"
 #include "render_setup.h"
 
 namespace erpt {

@@ -17,7 +17,7 @@
 //   image = chains + in-place contributions + direct pass. A chain alone is only consistent
 //   (it starts from an approximation of its stationary distribution); the render is unbiased
 //   in expectation, since b and the start states come from the same bootstrap (docs/mlt.md).
-#include "mlt_integrator.h"
+#include "integrators/mlt/mlt_integrator.h"
 
 #include <algorithm>
 #include <chrono>
@@ -29,8 +29,8 @@
 #include "stages/mlt_stages.h"
 #include "core/rng.h"
 #include "integrators/seed_checks.h"
-#include "erpt_integrator.h"
-#include "path_integrator.h"
+#include "integrators/erpt/erpt_integrator.h"
+#include "integrators/path/path_integrator.h"
 #include "render_setup.h"
 #include "integrators/systematic_resampling.h"
 #include "sample_passes.h"

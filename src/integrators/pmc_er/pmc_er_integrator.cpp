@@ -9,7 +9,7 @@
 //   3. The population (pmc_population.h) runs over the stratified pool of the render's
 //      width x height x spp positions; pixel value = sum of deposits / spp.
 //   4. As ERPT: the direct-lighting pass for one-bounce paths (--direct-samples), filters.
-#include "pmc_er_integrator.h"
+#include "integrators/pmc_er/pmc_er_integrator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -17,10 +17,10 @@
 
 #include "stages/pmc_mixture.h"
 #include "core/rng.h"
-#include "integrators/stratified_pool.h"
-#include "erpt_integrator.h"
+#include "integrators/pmc_er/stratified_pool.h"
+#include "integrators/erpt/erpt_integrator.h"
 #include "core/system_memory.h"
-#include "pmc_population.h"
+#include "integrators/pmc_er/pmc_population.h"
 #include "render_setup.h"
 #include "sample_passes.h"
 #include "chain_options.h"
@@ -241,6 +241,10 @@ IntegratorModule pmcErModule() {
       onlyWhen(integerOption("pmc-train-iterations", "region adaptation: iterations of the training population", 1,
                              100000, [](auto& s) -> auto& { return s.pmc.trainIterations; }),
                regionAdaptationOnly),
+      realOption("pmc-drain",
+                 "once the pool is used up, the population iterates until a member holds at most this share of "
+                 "its energy, then deposits the rest where it stands (1: at once)",
+                 0, 1, [](auto& s) -> auto& { return s.pmc.drainRemainder; }, /*minOpen=*/true),
       directSamplesOption()};
   addOptions(m.options, depositOptions());
   m.validate = [](const RenderSettings& s) { validatePmcSettings(s.pmc, s.erpt); };

@@ -7,7 +7,7 @@
 #include <atomic>
 
 #include "core/parallel.h"
-#include "direct_integrator.h"
+#include "integrators/direct/direct_integrator.h"
 #include "models/film.h"
 #include "stages/stages.h"
 #include "tracer/tracer.h"

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "integrators/chain_lanes.h"
-#include "integrators/erpt_integrator.h"
+#include "integrators/erpt/erpt_integrator.h"
 #include "erpt/render.h"
 #include "core/rng.h"
 #include "erpt/scene_loader.h"

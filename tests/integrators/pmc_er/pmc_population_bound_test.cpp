@@ -7,7 +7,7 @@
 #include "erpt/error.h"
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
-#include "pmc_er_integrator.h"
+#include "integrators/pmc_er/pmc_er_integrator.h"
 #include "support/test_support.h"
 
 namespace erpt {

@@ -1,4 +1,4 @@
-#include "pmc_population.h"
+#include "integrators/pmc_er/pmc_population.h"
 
 #include <chrono>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include "integrators/systematic_resampling.h"
 #include "core/rng.h"
 #include "integrators/seed_checks.h"
-#include "path_integrator.h"
+#include "integrators/path/path_integrator.h"
 #include "sample_passes.h"
 
 namespace erpt {
@@ -21,10 +21,11 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// Iterations after the pool is used up: until a member holds at most 10% of what it had.
-int drainIterations(double share) {
-  if (share >= 1) return 0;
-  return int(std::ceil(std::log(0.1) / std::log(1 - share)));
+// Iterations after the pool is used up: until a member holds at most `remainder` of what it
+// had, depositing `share` of what it holds per iteration.
+int drainIterations(double share, double remainder) {
+  if (share >= 1 || remainder >= 1) return 0;
+  return int(std::ceil(std::log(remainder) / std::log(1 - share)));
 }
 }  // namespace
 
@@ -79,7 +80,7 @@ bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::
   candidateEnergy_.clear();
   pmc_.poolSize += rounds.size();
   const size_t perIteration = std::max<size_t>(1, size_t(std::llround(s.resampleRate * double(slots()))));
-  const int drain = drainIterations(s.resampleRate);
+  const int drain = drainIterations(s.resampleRate, s.drainRemainder);
   regenerate(rounds, std::min(slots(), rounds.size()));
   resample(0, slots());
   int drained = 0;

@@ -23,7 +23,7 @@
 #include "models/film_splat.h"
 #include "stages/stages.h"
 #include "tracer/tracer.h"
-#include "path_integrator.h"
+#include "integrators/path/path_integrator.h"
 #include "render_setup.h"
 #include "sample_passes.h"
 

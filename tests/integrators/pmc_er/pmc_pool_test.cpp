@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "stages/stages.h"
-#include "integrators/stratified_pool.h"
+#include "integrators/pmc_er/stratified_pool.h"
 #include "support/erpt_world.h"
 #include "support/test_support.h"
 
