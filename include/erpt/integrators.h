@@ -65,6 +65,13 @@ const IntegratorModule& defaultIntegrator();
 // Its declaration of `--name` (name without dashes), or nullptr.
 const OptionSpec* findOption(const IntegratorModule& integrator, const std::string& name);
 
+// Sets the options `given` (long names without dashes, with their text; "true" for a flag) that
+// the integrator declares, in its declaration order, then throws UsageError for one that has no
+// effect with the result (OptionSpec::inapplicable). Options it does not declare are skipped:
+// front ends refuse them by scope (the CLI says which integrators take them).
+void applyOptions(const IntegratorModule& integrator, const std::vector<std::pair<std::string, std::string>>& given,
+                  RenderSettings& settings);
+
 // The front-end options of integrators that render in sample passes (long names): checkpoints,
 // partial images and the tev display (docs/long-renders.md).
 inline const std::vector<std::string> kSamplePassOptions = {"--checkpoint", "--checkpoint-every", "--write-partial",

@@ -44,14 +44,6 @@ struct OptionSpec {
   std::string allowed() const;
 };
 
-// Sets the options `given` (long names without dashes, with their text; "true" for a flag) that
-// the integrator declares, in its declaration order, then throws UsageError for one that has no
-// effect with the result (OptionSpec::inapplicable). Options it does not declare are skipped:
-// front ends refuse them by scope (the CLI says which integrators take them).
-struct IntegratorModule;
-void applyOptions(const IntegratorModule& integrator, const std::vector<std::pair<std::string, std::string>>& given,
-                  RenderSettings& settings);
-
 // Throws UsageError "--name must be in [min, max]" when the settings' value is out of range
 // (Integer and Real options; the others are checked when set).
 void checkOptionRange(const OptionSpec& option, const RenderSettings& settings);
