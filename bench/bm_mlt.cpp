@@ -20,8 +20,8 @@ void BM_MltRender(benchmark::State& state) {
   s.filterSet = true;
   s.filter = FilterKind::Box;
   s.threads = int(state.range(0));
-  s.mlt.largeStepProbability = float(state.range(1)) / 10.0f;
-  s.erpt.mutationsPerPixel = 64;
+  mltOf(s).largeStepProbability = float(state.range(1)) / 10.0f;
+  erptOf(s).mutationsPerPixel = 64;
   uint64_t mutations = 0, rays = 0;
   double seconds = 0, chain = 0, bootstrap = 0, large = 0;
   for (auto _ : state) {

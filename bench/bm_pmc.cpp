@@ -20,8 +20,8 @@ void BM_PmcRender(benchmark::State& state) {
   s.filterSet = true;
   s.filter = FilterKind::Box;
   s.threads = int(state.range(0));
-  s.pmc.flow = state.range(1) ? PmcFlow::Balance : PmcFlow::EqualDeposition;
-  s.erpt.directSamples = -1;
+  pmcOf(s).flow = state.range(1) ? PmcFlow::Balance : PmcFlow::EqualDeposition;
+  erptOf(s).directSamples = -1;
   uint64_t mutations = 0;
   double seconds = 0, chain = 0, resample = 0, regenerate = 0, train = 0;
   for (auto _ : state) {

@@ -61,4 +61,10 @@ struct ErptStats {
   double discardedEnergy = 0;       // their luminance
 };
 
+// The ErptSettings of a RenderSettings (its `options`): erptOf(settings).field.
+template <class Settings>
+auto& erptOf(Settings& settings) {
+  return settings.options.template get<ErptSettings>();
+}
+
 }  // namespace erpt

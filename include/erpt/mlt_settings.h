@@ -34,4 +34,10 @@ struct MltStats {
   double chainSeconds = 0, bootstrapSeconds = 0;
 };
 
+// The MltSettings of a RenderSettings (its `options`): mltOf(settings).field.
+template <class Settings>
+auto& mltOf(Settings& settings) {
+  return settings.options.template get<MltSettings>();
+}
+
 }  // namespace erpt

@@ -64,4 +64,10 @@ struct PmcStats {
   double resampleSeconds = 0, regenerateSeconds = 0, chainSeconds = 0, trainSeconds = 0;
 };
 
+// The PmcSettings of a RenderSettings (its `options`): pmcOf(settings).field.
+template <class Settings>
+auto& pmcOf(Settings& settings) {
+  return settings.options.template get<PmcSettings>();
+}
+
 }  // namespace erpt

@@ -11,6 +11,7 @@
 
 #include "erpt/erpt_settings.h"
 #include "erpt/image_io.h"
+#include "erpt/integrator_options.h"
 #include "erpt/mlt_settings.h"
 #include "erpt/pmc_settings.h"
 #include "erpt/render_state.h"
@@ -48,9 +49,9 @@ struct RenderSettings {
   // Path tracer with `seeds` set: called after every batch with that batch's seeds, which are
   // then cleared (streaming, so memory stays bounded). Unset: the store keeps all seeds.
   std::function<void(SeedStore&)> seedSink;
-  ErptSettings erpt;  // ERPT, and the options PMC-ER shares with it (direct split, deposits, filters, pilot)
-  PmcSettings pmc;
-  MltSettings mlt;
+  // Each integrator's own options (erptOf(s), pmcOf(s), mltOf(s)); PMC-ER and MLT read the
+  // options they share with ERPT (direct split, deposits, filters, perturbations) from ERPT's.
+  IntegratorOptions options;
   // The Embree scene. render() builds it once and every pass and sub-render (ERPT's pilot,
   // seed and direct passes, time-budgeted passes) shares it; unset: the integrator builds one.
   std::shared_ptr<const Tracer> tracer;

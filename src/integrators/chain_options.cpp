@@ -4,7 +4,7 @@ namespace erpt {
 
 OptionSpec mutationsPerPixelOption() {
   return integerOption("mutations-per-pixel", "mutations per pixel M (ERPT: sets e_d = spp e_ave / M)", 1, 1 << 24,
-                       [](auto& s) -> auto& { return s.erpt.mutationsPerPixel; });
+                       [](auto& s) -> auto& { return erptOf(s).mutationsPerPixel; });
 }
 
 std::vector<OptionSpec> perturbationOptions() {
@@ -17,19 +17,19 @@ std::vector<OptionSpec> perturbationOptions() {
            {"mixed", MutationStrategy::Mixed},
            {"lens", MutationStrategy::LensOnly},
            {"caustic", MutationStrategy::CausticOnly}},
-          [](auto& s) -> auto& { return s.erpt.strategy; }),
+          [](auto& s) -> auto& { return erptOf(s).strategy; }),
       realOption("lens-radius", "size in pixels of lens perturbations (4.5 = the paper's 9x9 square)", 0, 10000,
-                 [](auto& s) -> auto& { return s.erpt.lensRadius; }, /*minOpen=*/true),
+                 [](auto& s) -> auto& { return erptOf(s).lensRadius; }, /*minOpen=*/true),
       choiceOption<LensShape>("lens-shape",
                               "lens perturbations move the film position uniformly in a square of half-side "
                               "--lens-radius (square, the paper's) or in a disk of that radius (disk, PMC-ER's)",
                               {{"square", LensShape::Square}, {"disk", LensShape::Disk}},
-                              [](auto& s) -> auto& { return s.erpt.lensShape; }),
+                              [](auto& s) -> auto& { return erptOf(s).lensShape; }),
       choiceOption<CausticAngle>("caustic-angle",
                                  "caustic perturbation angle: erpt (density 1/theta on [1e-4, 0.1] rad) or veach "
                                  "(uniform in [0, theta_max], PMC-ER eq. 6, for an image move of --lens-radius pixels)",
                                  {{"erpt", CausticAngle::Erpt}, {"veach", CausticAngle::Veach}},
-                                 [](auto& s) -> auto& { return s.erpt.causticAngle; }),
+                                 [](auto& s) -> auto& { return erptOf(s).causticAngle; }),
   };
 }
 
@@ -37,7 +37,7 @@ OptionSpec directSamplesOption() {
   return integerOption("direct-samples",
                        "one-bounce paths by a direct-lighting pass with N samples per pixel; -1: the chains render "
                        "them too, as in the ERPT paper",
-                       -1, 65536, [](auto& s) -> auto& { return s.erpt.directSamples; });
+                       -1, 65536, [](auto& s) -> auto& { return erptOf(s).directSamples; });
 }
 
 std::vector<OptionSpec> depositOptions() {
@@ -47,20 +47,20 @@ std::vector<OptionSpec> depositOptions() {
                       "OUT-proposals.exr (the tally)",
                       OptionKind::Flag};
   pmFilter.set = [](RenderSettings& s, const std::string&) {
-    if (s.erpt.pmFilterRadius < 0) s.erpt.pmFilterRadius = 3;  // the paper's 7x7
+    if (erptOf(s).pmFilterRadius < 0) erptOf(s).pmFilterRadius = 3;  // the paper's 7x7
   };
-  pmFilter.get = [](const RenderSettings& s) { return s.erpt.pmFilterRadius >= 0 ? "true" : "false"; };
+  pmFilter.get = [](const RenderSettings& s) { return erptOf(s).pmFilterRadius >= 0 ? "true" : "false"; };
   return {
       choiceOption<bool>("deposit", "paper (all of a step's energy at the chain's path) or expected ((1-q) at y, q at z)",
                          {{"paper", false}, {"expected", true}},
-                         [](auto& s) -> auto& { return s.erpt.expectedDeposit; }),
+                         [](auto& s) -> auto& { return erptOf(s).expectedDeposit; }),
       pmFilter,
       integerOption("pm-filter-radius", "box radius of the proposed-mutations filter (3 = the paper's 7x7; -1: off)",
-                    -1, 1000, [](auto& s) -> auto& { return s.erpt.pmFilterRadius; }),
+                    -1, 1000, [](auto& s) -> auto& { return erptOf(s).pmFilterRadius; }),
       integerOption("max-consecutive",
                     "consecutive-sample noise filter (ERPT paper 4.4; biased): a chain's deposits are dropped after "
                     "N in a row on one pixel (paper: 10-20; 0: off)",
-                    0, 1 << 30, [](auto& s) -> auto& { return s.erpt.maxConsecutive; }),
+                    0, 1 << 30, [](auto& s) -> auto& { return erptOf(s).maxConsecutive; }),
   };
 }
 

@@ -56,7 +56,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
   // The image of all passes so far. The proposed-mutations filter is not linear: it is applied
   // once, to the sum of the passes' chain images and tallies.
   auto resultSoFar = [&]() {
-    if (!module.proposalFiltered || s.erpt.pmFilterRadius < 0) return image.mean(stats.spp);
+    if (!module.proposalFiltered || erptOf(s).pmFilterRadius < 0) return image.mean(stats.spp);
     RgbImage raw, chains, proposals;
     for (size_t k = 0; k < extras.size(); ++k) {
       const std::string& name = stats.extraImages[k].first;
@@ -64,7 +64,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
       if (name == "chains") chains = extras[k].mean(stats.spp);
       if (name == "proposals") proposals = extras[k].mean(1.0);
     }
-    return proposalFilteredImage(raw, chains, proposals, s.erpt.pmFilterRadius);
+    return proposalFilteredImage(raw, chains, proposals, erptOf(s).pmFilterRadius);
   };
   int passSpp = 1;
   for (int p = 0;; ++p) {

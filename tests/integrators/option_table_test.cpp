@@ -75,7 +75,7 @@ TEST(OptionTable, RenderRefusesProgrammaticSettingsOutOfRange) {
   RenderSettings s;
   s.integrator = "erpt";
   s.width = 8, s.height = 6, s.spp = 1;
-  s.erpt.chainLength = 0;
+  erptOf(s).chainLength = 0;
   RenderStats stats;
   try {
     render(scene, s, stats);
@@ -83,27 +83,27 @@ TEST(OptionTable, RenderRefusesProgrammaticSettingsOutOfRange) {
   } catch (const UsageError& e) {
     EXPECT_NE(std::string(e.what()).find("--chain-length must be in [1, 16777216]"), std::string::npos) << e.what();
   }
-  s.erpt.chainLength = 10;
-  s.erpt.lensRadius = 0;
+  erptOf(s).chainLength = 10;
+  erptOf(s).lensRadius = 0;
   EXPECT_THROW(render(scene, s, stats), UsageError);
-  s.erpt.lensRadius = 4.5f;
+  erptOf(s).lensRadius = 4.5f;
   s.integrator = "pmc-er";
-  s.pmc.resampleRate = 2;
+  pmcOf(s).resampleRate = 2;
   EXPECT_THROW(render(scene, s, stats), UsageError);
 }
 
 TEST(OptionTable, ApplyingOptionsSetsOnlyTheIntegratorsOwnAndRefusesOnesWithoutEffect) {
   RenderSettings s;
   applyOptions(integratorNamed("erpt"), {{"chain-length", "7"}, {"population", "3"}, {"pm-filter", "true"}}, s);
-  EXPECT_EQ(s.erpt.chainLength, 7);
-  EXPECT_EQ(s.pmc.population, PmcSettings{}.population);  // not an ERPT option: left to the front end's scope check
-  EXPECT_EQ(s.erpt.pmFilterRadius, 3);
+  EXPECT_EQ(erptOf(s).chainLength, 7);
+  EXPECT_EQ(pmcOf(s).population, PmcSettings{}.population);  // not an ERPT option: left to the front end's scope check
+  EXPECT_EQ(erptOf(s).pmFilterRadius, 3);
   RenderSettings p;
   EXPECT_THROW(applyOptions(integratorNamed("pmc-er"), {{"pmc-adapt", "off"}, {"pmc-region", "8"}}, p), UsageError);
   RenderSettings q;
   applyOptions(integratorNamed("pmc-er"), {{"pmc-adapt", "region"}, {"pmc-region", "8"}, {"radii", "2,7.5"}}, q);
-  EXPECT_EQ(q.pmc.regionSize, 8);
-  EXPECT_EQ(q.pmc.radii, (std::vector<float>{2, 7.5f}));
+  EXPECT_EQ(pmcOf(q).regionSize, 8);
+  EXPECT_EQ(pmcOf(q).radii, (std::vector<float>{2, 7.5f}));
 }
 
 }  // namespace

@@ -54,27 +54,27 @@ std::vector<Case> cases() {
   erpt.integrator = "erpt";
   erpt.width = erpt.height = 48;  // groups of 3 passes
   erpt.spp = 9;
-  erpt.erpt.mutationsPerPixel = 16;
-  erpt.erpt.chainLength = 20;
-  erpt.erpt.directSamples = 4;
-  erpt.erpt.pmFilterRadius = 2;
+  erptOf(erpt).mutationsPerPixel = 16;
+  erptOf(erpt).chainLength = 20;
+  erptOf(erpt).directSamples = 4;
+  erptOf(erpt).pmFilterRadius = 2;
   out.push_back({"erpt, direct pass, pm filter", erpt});
   RenderSettings consecutive = erpt;
-  consecutive.erpt.directSamples = -1;
-  consecutive.erpt.pmFilterRadius = -1;
-  consecutive.erpt.maxConsecutive = 5;
-  consecutive.erpt.expectedDeposit = true;
+  erptOf(consecutive).directSamples = -1;
+  erptOf(consecutive).pmFilterRadius = -1;
+  erptOf(consecutive).maxConsecutive = 5;
+  erptOf(consecutive).expectedDeposit = true;
   out.push_back({"erpt, expected deposits, consecutive filter", consecutive});
   RenderSettings pmc = erpt;  // 48x48, groups of 3 passes: the population runs once per group
   pmc.integrator = "pmc-er";
-  pmc.pmc.population = 200;
-  pmc.pmc.mutationsPerMember = 4;
+  pmcOf(pmc).population = 200;
+  pmcOf(pmc).mutationsPerMember = 4;
   out.push_back({"pmc-er, region adaptation, direct pass, pm filter", pmc});
   RenderSettings balance = pmc;
-  balance.pmc.flow = PmcFlow::Balance;
-  balance.pmc.adapt = PmcAdapt::Member;
-  balance.erpt.directSamples = -1;
-  balance.erpt.pmFilterRadius = -1;
+  pmcOf(balance).flow = PmcFlow::Balance;
+  pmcOf(balance).adapt = PmcAdapt::Member;
+  erptOf(balance).directSamples = -1;
+  erptOf(balance).pmFilterRadius = -1;
   out.push_back({"pmc-er, balance flow, member adaptation", balance});
   return out;
 }
@@ -208,7 +208,7 @@ TEST(StatisticalErpt, StoppedRenderIsUnbiasedAtThePassesDone) {
   s.integrator = "erpt";
   s.spp = 32;
   s.passGroupSamples = 32768;  // 64x64: groups of 8 passes; stopped after 2 groups
-  s.erpt.mutationsPerPixel = 400;  // per pixel of the 32 spp asked for: about 200 run
+  erptOf(s).mutationsPerPixel = 400;  // per pixel of the 32 spp asked for: about 200 run
   expectStoppedRendersAreUnbiased(defaultScene(), s, 16, 16, 202);
 }
 
@@ -228,8 +228,8 @@ TEST(StatisticalPmc, SeveralGroupsOfPassesMatchPathTracerBlockByBlock) {
   s.integrator = "pmc-er";
   s.spp = 8;
   s.passGroupSamples = 16384;  // 64x64: two groups of 4 passes
-  s.pmc.population = 1000;
-  s.erpt.directSamples = -1;
+  pmcOf(s).population = 1000;
+  erptOf(s).directSamples = -1;
   test::expectMatchesPathTracerBlockByBlock(defaultScene(), s, 12, 5000);
 }
 
@@ -302,12 +302,12 @@ TEST(Resume, SplitRendersAddUpToTheWholeRender) {
   s.seed = 5;
   s.filterSet = true;
   s.filter = FilterKind::Tent;  // splatting: weights are summed too
-  s.pmc.population = 200;
+  pmcOf(s).population = 200;
   for (const char* integrator : {"path", "direct", "erpt", "pmc-er"}) {
     SCOPED_TRACE(integrator);
     s.integrator = integrator;
-    s.erpt.directSamples = 4;
-    s.erpt.pmFilterRadius = 1;  // the tally is summed too
+    erptOf(s).directSamples = 4;
+    erptOf(s).pmFilterRadius = 1;  // the tally is summed too
     const std::vector<RgbImage> split = renderSplit(scene, s, 2);
     EXPECT_TRUE(sameBits(split[0], split[1]));  // every rank holds the whole image
     EXPECT_TRUE(sameBits(split[0], renderSplit(scene, s, 2)[0]));  // and the same every run

@@ -63,9 +63,9 @@ TEST(TimedRender, ErptKeepsMutationsPerSeed) {
   const Scene scene = cornell();
   RenderSettings s = timed("erpt", 1.5);
   s.spp = 8;
-  s.erpt.mutationsPerPixel = 40;
-  s.erpt.chainLength = 20;
-  s.erpt.pmFilterRadius = 2;
+  erptOf(s).mutationsPerPixel = 40;
+  erptOf(s).chainLength = 20;
+  erptOf(s).pmFilterRadius = 2;
   RenderStats stats;
   const RgbImage img = render(scene, s, stats);
   std::map<std::string, RgbImage> extra(stats.extraImages.begin(), stats.extraImages.end());

@@ -216,8 +216,8 @@ RgbImage renderWith(const Scene& scene, const std::string& integrator, int spp, 
   s.integrator = integrator;
   s.spp = spp;
   s.seed = seed;
-  s.erpt.mutationsPerPixel = 200;
-  s.erpt.directSamples = -1;
+  erptOf(s).mutationsPerPixel = 200;
+  erptOf(s).directSamples = -1;
   RenderStats stats;
   RgbImage img = render(scene, s, stats);
   EXPECT_EQ(stats.invalidSamples, 0u) << integrator;

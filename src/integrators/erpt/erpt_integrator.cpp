@@ -15,7 +15,6 @@
 #include <chrono>
 #include <cmath>
 
-#include "integrators/direct/direct_integrator.h"
 #include "core/rng.h"
 #include "integrators/chain_lanes.h"
 #include "integrators/noise_filters.h"
@@ -23,33 +22,34 @@
 #include "integrators/path/path_integrator.h"
 #include "render_setup.h"
 #include "chain_options.h"
+#include "integrators/redistribution_parts.h"
 #include "sample_passes.h"
 #include "integrator_stats.h"
 
 namespace erpt {
 
 namespace {
-constexpr uint64_t kPilotStream = 0x70696c6f74ull, kDirectStream = 0x646972656374ull, kRankStream = 0x72616e6bull;
+constexpr uint64_t kPilotStream = 0x70696c6f74ull, kRankStream = 0x72616e6bull;
 }  // namespace
 
 void validateErptSettings(const ErptSettings& o) {
   // The ranges of single options are their declarations' (erptModule); these are the rules
   // that tie values or options together.
-  if (o.directSamples == 0) throw UsageError("--direct-samples must be -1 (the chains render direct light too) or at least 1");
+  validateChainOptions(o);
   if (o.maxConsecutive > 0 && o.flow == FlowRule::DetailedBalance)
     throw UsageError("--max-consecutive needs moving chains: it does not apply to --flow detailed-balance");
 }
 
 // e_ave: mean energy per pixel sample of the seeds ERPT will redistribute.
 double erptPilotEnergy(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
-  validateErptSettings(s.erpt);
+  validateErptSettings(erptOf(s));
   RenderSettings pilot = subRenderSettings(s);
-  pilot.spp = s.erpt.pilotSpp;
+  pilot.spp = erptOf(s).pilotSpp;
   pilot.seed = streamKey(s.seed, kPilotStream, 0);
   SeedStore store;
   pilot.seeds = &store;
   double energy = 0;
-  const bool excludeDirect = s.erpt.directSamples > 0;
+  const bool excludeDirect = erptOf(s).directSamples > 0;
   pilot.seedSink = [&](SeedStore& batch) {
     for (size_t i = 0; i < batch.size(); ++i) {
       if (!seedForChains(batch, i, excludeDirect)) continue;
@@ -74,7 +74,7 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
 }
 
 RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats& stats, const ErptEnergies& known) {
-  const ErptSettings& o = s.erpt;
+  const ErptSettings& o = erptOf(s);
   validateErptSettings(o);
   ErptStats& es = stats.erpt;
   RgbImage direct;
@@ -159,48 +159,6 @@ RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats
   return image(stats.spp, &stats.extraImages);
 }
 
-RgbImage renderDirectPass(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
-  if (s.erpt.directSamples <= 0) return RgbImage{};
-  RenderSettings direct = subRenderSettings(s);
-  direct.spp = s.erpt.directSamples;
-  // Its own random stream: the main pass's keys would correlate the two estimates.
-  direct.seed = streamKey(s.seed, kDirectStream, 0);
-  RenderStats directStats;
-  RgbImage d = renderDirect(scene, direct, directStats);
-  stats.rays += directStats.rays;
-  for (const auto& [name, seconds] : directStats.stages.all()) stats.stages.add("direct " + name, seconds);
-  return d;
-}
-
-RgbImage redistributionImage(const RenderSettings& s, RgbImage image, const RgbImage& direct,
-                             const std::vector<uint32_t>* tally, std::vector<std::pair<std::string, RgbImage>>* extras) {
-  RgbImage chainsOnly, counts;
-  if (tally) {
-    // The filter rescales what the chains deposited (not the direct pass) and needs it apart.
-    chainsOnly = image;
-    counts.width = s.width;
-    counts.height = s.height;
-    for (uint32_t t : *tally) counts.pixels.push_back(Color(float(t)));
-  }
-  if (!direct.pixels.empty())
-    for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] += direct.pixels[i];
-  if (!tally) return image;
-  RgbImage filtered = proposalFilteredImage(image, chainsOnly, counts, s.erpt.pmFilterRadius);
-  if (extras) {
-    // Keep the unfiltered image and the chains' part for the user (and for time-budgeted
-    // renders, which filter the sum of their passes).
-    extras->emplace_back("proposals", std::move(counts));
-    extras->emplace_back("raw", std::move(image));
-    extras->emplace_back("chains", std::move(chainsOnly));
-  }
-  return filtered;
-}
-
-void scaleDirectSamples(const RenderSettings& whole, RenderSettings& pass) {
-  if (whole.erpt.directSamples > 0)
-    pass.erpt.directSamples = std::max(1, int(std::lround(double(whole.erpt.directSamples) * pass.spp / whole.spp)));
-}
-
 IntegratorModule erptModule() {
   IntegratorModule m;
   m.name = "erpt";
@@ -208,23 +166,23 @@ IntegratorModule erptModule() {
   m.samplePasses = true;
   m.options = {mutationsPerPixelOption(),
                integerOption("chain-length", "steps m of every chain (paper: 100-1000)", 1, 1 << 24,
-                             [](auto& s) -> auto& { return s.erpt.chainLength; }),
+                             [](auto& s) -> auto& { return erptOf(s).chainLength; }),
                integerOption("pilot-spp", "samples per pixel of the pilot pass estimating e_ave", 1, 65536,
-                             [](auto& s) -> auto& { return s.erpt.pilotSpp; }),
+                             [](auto& s) -> auto& { return erptOf(s).pilotSpp; }),
                choiceOption<FlowRule>("flow",
                                       "equal-deposition (paper section 3.2) or detailed-balance (section 3.1: each "
                                       "seed is mutated --chain-length times and never moves)",
                                       {{"equal-deposition", FlowRule::EqualDeposition},
                                        {"detailed-balance", FlowRule::DetailedBalance}},
-                                      [](auto& s) -> auto& { return s.erpt.flow; }),
+                                      [](auto& s) -> auto& { return erptOf(s).flow; }),
                integerOption("max-chains-per-seed",
                              "at most this many chains per seed; a seed that would start more starts this many, each "
                              "depositing more per step (same total)",
-                             1, 1000000, [](auto& s) -> auto& { return s.erpt.maxChainsPerSeed; }),
+                             1, 1000000, [](auto& s) -> auto& { return erptOf(s).maxChainsPerSeed; }),
                directSamplesOption()};
   addOptions(m.options, perturbationOptions());
   addOptions(m.options, depositOptions());
-  m.validate = [](const RenderSettings& s) { validateErptSettings(s.erpt); };
+  m.validate = [](const RenderSettings& s) { validateErptSettings(erptOf(s)); };
   m.render = renderErpt;
   m.printSummary = printErptSummary;
   m.addStats = [](RenderStats& to, const RenderStats& from) { addErptStats(to.erpt, from.erpt); };
@@ -233,7 +191,7 @@ IntegratorModule erptModule() {
     // configured spp, so each pass runs the configured mutations per seed.
     ErptEnergies known;
     known.pilot = erptPilotEnergy(scene, s, stats);
-    known.deposit = double(s.spp) * known.pilot / std::max(1, s.erpt.mutationsPerPixel);
+    known.deposit = double(s.spp) * known.pilot / std::max(1, erptOf(s).mutationsPerPixel);
     return [known](const Scene& sc, const RenderSettings& pass, RenderStats& ps) {
       return renderErptWith(sc, pass, ps, known);
     };

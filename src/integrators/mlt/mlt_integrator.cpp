@@ -29,7 +29,7 @@
 #include "stages/mlt_stages.h"
 #include "core/rng.h"
 #include "integrators/seed_checks.h"
-#include "integrators/erpt/erpt_integrator.h"
+#include "integrators/redistribution_parts.h"
 #include "integrators/path/path_integrator.h"
 #include "render_setup.h"
 #include "integrators/systematic_resampling.h"
@@ -152,14 +152,14 @@ struct Bootstrap {
 }  // namespace
 
 void validateMltSettings(const RenderSettings& s) {
-  validateErptSettings(s.erpt);
-  const MltSettings& m = s.mlt;
-  const double mutations = double(s.erpt.mutationsPerPixel) * double(s.width) * double(s.height);
+  validateChainOptions(erptOf(s));
+  const MltSettings& m = mltOf(s);
+  const double mutations = double(erptOf(s).mutationsPerPixel) * double(s.width) * double(s.height);
   if (mutations / double(m.chains) > double(1 << 30))
     throw UsageError("--mutations-per-pixel x pixels / --chains gives more than 2^30 steps per chain; raise --chains");
-  if (s.erpt.pmFilterRadius >= 0 || s.erpt.maxConsecutive > 0)
+  if (erptOf(s).pmFilterRadius >= 0 || erptOf(s).maxConsecutive > 0)
     throw UsageError("--pm-filter and --max-consecutive are ERPT's noise filters; mlt does not take them");
-  if (s.erpt.flow != FlowRule::EqualDeposition) throw UsageError("--flow is ERPT's; mlt does not take it");
+  if (erptOf(s).flow != FlowRule::EqualDeposition) throw UsageError("--flow is ERPT's; mlt does not take it");
   if (s.share.split()) throw UsageError("mlt does not split a render over processes yet");
   if (s.resume || s.onPasses) throw UsageError("mlt does not write checkpoints or partial images yet");
 }
@@ -167,7 +167,7 @@ void validateMltSettings(const RenderSettings& s) {
 RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
   validateMltSettings(s);
   MltStats& ms = stats.mlt;
-  const ErptSettings& options = s.erpt;
+  const ErptSettings& options = erptOf(s);
   StepSettings step = stepSettingsOf(options);
   step.expectedDeposit = true;  // MLT's expected-value splatting of current and proposed paths
   const RgbImage direct = renderDirectPass(scene, s, stats);
@@ -175,7 +175,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   RenderSetup setup(scene, s);
   FilmDensity density(setup.filter, s.width, s.height);
   LargeStepModel model;
-  model.probability = s.mlt.largeStepProbability;
+  model.probability = mltOf(s).largeStepProbability;
   model.minVertices = options.directSamples > 0 ? 4 : 2;
   model.maxVertices = s.maxDepth >= 0 ? std::min(kMaxChainVertices, s.maxDepth + 1) : kMaxChainVertices;
   model.rrDepth = setup.ctx.rrDepth;
@@ -196,7 +196,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   Bootstrap boot{ctx, options.directSamples > 0, {}};
   Film inPlace(s.width, s.height);
   RenderSettings bs = subRenderSettings(s);
-  bs.spp = bootstrapSamplesPerPixel(s.mlt, double(s.width) * double(s.height));
+  bs.spp = bootstrapSamplesPerPixel(mltOf(s), double(s.width) * double(s.height));
   bs.seed = streamKey(s.seed, kBootstrapStream, 0);
   bs.tracer = setup.sharedTracer;
   const RenderSetup bootSetup(scene, bs);
@@ -243,7 +243,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   // The chains' start states; the second trace runs only the samples that made them (the
   // same paths, bit for bit: a sample's random stream is keyed by its pixel and number).
   const double mutations = double(options.mutationsPerPixel) * double(s.width) * double(s.height);
-  const size_t chains = boot.energies.empty() ? 0 : size_t(std::min<double>(s.mlt.chains, mutations));
+  const size_t chains = boot.energies.empty() ? 0 : size_t(std::min<double>(mltOf(s).chains, mutations));
   const uint32_t length = chains ? uint32_t(std::max(1.0, std::round(mutations / double(chains)))) : 0;
   // The chains' starts: systematic resampling of the domain contributions by luminance.
   const std::vector<size_t> chosen =
@@ -324,15 +324,15 @@ IntegratorModule mltModule() {
                realOption("large-step-prob",
                           "probability that a chain step is a large step, a fresh path-tracer sample through a "
                           "uniform pixel",
-                          0, 1, [](auto& s) -> auto& { return s.mlt.largeStepProbability; }),
+                          0, 1, [](auto& s) -> auto& { return mltOf(s).largeStepProbability; }),
                integerOption("bootstrap",
                              "path-tracer samples per pixel of the bootstrap that estimates the image's luminance b "
                              "and seeds the chains (0: enough for 100,000 samples, at least 1 per pixel)",
-                             0, 65536, [](auto& s) -> auto& { return s.mlt.bootstrapSpp; }),
+                             0, 65536, [](auto& s) -> auto& { return mltOf(s).bootstrapSpp; }),
                integerOption("chains",
                              "Markov chains, started by resampling the bootstrap's paths by luminance; each runs "
                              "mutations-per-pixel x pixels / chains steps",
-                             1, 100000000, [](auto& s) -> auto& { return s.mlt.chains; })};
+                             1, 100000000, [](auto& s) -> auto& { return mltOf(s).chains; })};
   addOptions(m.options, perturbationOptions());
   m.sppOption = "mutations-per-pixel";  // Mitsuba's MLT takes its sampler's sample count as this
   m.validate = [](const RenderSettings& s) {
@@ -349,7 +349,7 @@ IntegratorModule mltModule() {
   };
   m.scaleTimedPass = [](const RenderSettings& s, RenderSettings& pass) {
     // Each pass runs the configured mutations per pixel scaled by its share of the spp.
-    pass.erpt.mutationsPerPixel = std::max(1, int(std::lround(double(s.erpt.mutationsPerPixel) * pass.spp / s.spp)));
+    erptOf(pass).mutationsPerPixel = std::max(1, int(std::lround(double(erptOf(s).mutationsPerPixel) * pass.spp / s.spp)));
     scaleDirectSamples(s, pass);
   };
   return m;

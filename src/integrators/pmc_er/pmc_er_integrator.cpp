@@ -18,7 +18,7 @@
 #include "stages/pmc_mixture.h"
 #include "core/rng.h"
 #include "integrators/pmc_er/stratified_pool.h"
-#include "integrators/erpt/erpt_integrator.h"
+#include "integrators/redistribution_parts.h"
 #include "core/system_memory.h"
 #include "integrators/pmc_er/pmc_population.h"
 #include "render_setup.h"
@@ -48,23 +48,23 @@ OptionSpec radiiOption() {
       radii.push_back(r);
       start = comma + 1;
     }
-    s.pmc.radii = radii;
+    pmcOf(s).radii = radii;
   };
   o.get = [](const RenderSettings& s) {
     std::string text;
-    for (float r : s.pmc.radii) text += (text.empty() ? "" : ",") + formatOptionNumber(r);
+    for (float r : pmcOf(s).radii) text += (text.empty() ? "" : ",") + formatOptionNumber(r);
     return text;
   };
   return o;
 }
 std::string regionAdaptationOnly(const RenderSettings& s) {
-  return s.pmc.adapt == PmcAdapt::Region ? "" : "applies to pmc-er with --pmc-adapt region only";
+  return pmcOf(s).adapt == PmcAdapt::Region ? "" : "applies to pmc-er with --pmc-adapt region only";
 }
 }  // namespace
 
 void validatePmcSettings(const PmcSettings& p, const ErptSettings& e) {
   // The ranges of single options are their declarations' (pmcErModule); these tie values together.
-  validateErptSettings(e);
+  validateChainOptions(e);
   if (p.radii.empty() || p.radii.size() > size_t(kMaxPmcRadii))
     throw UsageError("--radii takes 1 to " + std::to_string(kMaxPmcRadii) + " radii");
   for (float r : p.radii)
@@ -79,7 +79,7 @@ namespace {
 // mixture weights per region; independent of the render, so the frozen table is too.
 void trainRegionTable(const Scene& scene, const RenderSettings& s, const StepConfig& ctx, PmcMixture& mixture,
                       RenderStats& stats) {
-  const PmcSettings& p = s.pmc;
+  const PmcSettings& p = pmcOf(s);
   PmcStats& ps = stats.pmc;
   const uint32_t pixels = uint32_t(s.width) * uint32_t(s.height);
   RenderSettings ts = subRenderSettings(s);
@@ -91,7 +91,7 @@ void trainRegionTable(const Scene& scene, const RenderSettings& s, const StepCon
   tp.adapt = PmcAdapt::Off;
   PmcMixture uniform(tp, s.width, s.height);
   RenderStats trainStats;
-  PmcPopulation trainer(trainSetup, PmcPopulation::Config{ctx, chainSettingsOf(s.erpt), tp, ts.seed, nullptr}, uniform, trainStats);
+  PmcPopulation trainer(trainSetup, PmcPopulation::Config{ctx, chainSettingsOf(erptOf(s)), tp, ts.seed, nullptr}, uniform, trainStats);
   trainer.run(PoolRounds::all(StratifiedPool{pixels, uint32_t(ts.spp), ts.seed}), p.trainIterations);
   mixture.setRegionTable(trainer.regionSums(), 1.0);
   ps.trainingIterations = trainStats.pmc.trainingIterations;
@@ -105,8 +105,8 @@ void trainRegionTable(const Scene& scene, const RenderSettings& s, const StepCon
 
 int usablePopulation(const RenderSettings& s, size_t availableBytes) {
   const double pool = double(s.width) * double(s.height) * double(std::max(1, s.spp));
-  const int population = int(std::min(double(s.pmc.population), pool));
-  const double bytes = double(population) * double(PmcPopulation::bytesPerMember(int(s.pmc.radii.size())));
+  const int population = int(std::min(double(pmcOf(s).population), pool));
+  const double bytes = double(population) * double(PmcPopulation::bytesPerMember(int(pmcOf(s).radii.size())));
   if (availableBytes > 0 && bytes > 0.8 * double(availableBytes))
     throw UsageError("--population " + std::to_string(population) + " needs about " + humanBytes(bytes) +
                      " for its members; this machine has " + humanBytes(double(availableBytes)) + " available");
@@ -114,11 +114,11 @@ int usablePopulation(const RenderSettings& s, size_t availableBytes) {
 }
 
 RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
-  validatePmcSettings(requested.pmc, requested.erpt);
+  validatePmcSettings(pmcOf(requested), erptOf(requested));
   RenderSettings s = requested;
-  s.pmc.population = usablePopulation(requested, availableMemoryBytes());
-  stats.pmc.requestedPopulation = uint64_t(requested.pmc.population);
-  const PmcSettings& p = s.pmc;
+  pmcOf(s).population = usablePopulation(requested, availableMemoryBytes());
+  stats.pmc.requestedPopulation = uint64_t(pmcOf(requested).population);
+  const PmcSettings& p = pmcOf(s);
   ErptStats& es = stats.erpt;
   PmcStats& ps = stats.pmc;
 
@@ -126,7 +126,7 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
   FilmDensity density(setup.filter, s.width, s.height);
   // The chain step's view of the kernel: the disk lens and Veach caustic units (sizes from
   // the mixture), the families the path allows (Mixed's), detailed-balance deposits for Balance.
-  StepSettings step = stepSettingsOf(s.erpt);  // the deposit rule
+  StepSettings step = stepSettingsOf(erptOf(s));  // the deposit rule
   step.strategy = MutationStrategy::Mixed;
   step.lensShape = LensShape::Disk;
   step.causticAngle = CausticAngle::Veach;
@@ -143,7 +143,7 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
     direct = renderDirectPass(scene, s, stats);
   }
 
-  PmcPopulation population(setup, PmcPopulation::Config{ctx, chainSettingsOf(s.erpt), p, s.seed, &setup.film}, mixture, stats);
+  PmcPopulation population(setup, PmcPopulation::Config{ctx, chainSettingsOf(erptOf(s)), p, s.seed, &setup.film}, mixture, stats);
   const StratifiedPool pool{pixels, uint32_t(s.spp), streamKey(s.seed, kPoolStream, 0)};
   const uint32_t rank = uint32_t(s.share.rank), ranks = uint32_t(std::max(1, s.share.ranks));
   SamplePassHooks passes;
@@ -158,7 +158,7 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
   passes.load = [&](ByteReader& r) {
     r.get(es), r.get(ps);
     r.get(stats.samples), r.get(stats.rays), r.get(stats.invalidSamples);
-    const size_t directPixels = s.erpt.directSamples > 0 ? size_t(pixels) : 0;
+    const size_t directPixels = erptOf(s).directSamples > 0 ? size_t(pixels) : 0;
     r.getVector(direct.pixels, directPixels);
     direct.width = directPixels ? s.width : 0, direct.height = directPixels ? s.height : 0;
     mixture.load(r);
@@ -183,7 +183,7 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
   };
   auto image = [&](int done, std::vector<std::pair<std::string, RgbImage>>* extras) {
     return redistributionImage(s, setup.film.resolve(double(done)), direct,
-                               s.erpt.pmFilterRadius >= 0 ? &population.proposalTally() : nullptr, extras);
+                               erptOf(s).pmFilterRadius >= 0 ? &population.proposalTally() : nullptr, extras);
   };
   passes.image = [&](int done) { return image(done, nullptr); };
   renderInSamplePasses(s, pixels, stats, passes);
@@ -212,42 +212,42 @@ IntegratorModule pmcErModule() {
                             "equal-deposition (paper figure 2: members are Metropolis chains depositing equally per "
                             "step) or balance (figure 3: members stay, each proposal receives its share times q)",
                             {{"equal-deposition", PmcFlow::EqualDeposition}, {"balance", PmcFlow::Balance}},
-                            [](auto& s) -> auto& { return s.pmc.flow; }),
-      integerOption("population", "members in the population", 1, 10000000, [](auto& s) -> auto& { return s.pmc.population; }),
+                            [](auto& s) -> auto& { return pmcOf(s).flow; }),
+      integerOption("population", "members in the population", 1, 10000000, [](auto& s) -> auto& { return pmcOf(s).population; }),
       integerOption("mutations-per-member", "mutations of every member per iteration", 1, 1000000,
-                    [](auto& s) -> auto& { return s.pmc.mutationsPerMember; }),
+                    [](auto& s) -> auto& { return pmcOf(s).mutationsPerMember; }),
       radiiOption(),
       choiceOption<PmcAdapt>("pmc-adapt",
                              "mixture weights per image region, learned by an independent training population and "
                              "frozen (region: unbiased), per member from its own acceptances (member, the paper's: "
                              "can bias), or uniform (off)",
                              {{"region", PmcAdapt::Region}, {"member", PmcAdapt::Member}, {"off", PmcAdapt::Off}},
-                             [](auto& s) -> auto& { return s.pmc.adapt; }),
+                             [](auto& s) -> auto& { return pmcOf(s).adapt; }),
       realOption("resample-rate",
                  "share of the population regenerated from the pool per iteration, and of a member's energy "
                  "deposited per iteration",
-                 0.001, 1, [](auto& s) -> auto& { return s.pmc.resampleRate; }),
+                 0.001, 1, [](auto& s) -> auto& { return pmcOf(s).resampleRate; }),
       onlyWhen(realOption("alpha-floor", "smallest mixture weight eps (below 1 / the number of radii)", 0, 0.5,
-                          [](auto& s) -> auto& { return s.pmc.alphaFloor; }),
+                          [](auto& s) -> auto& { return pmcOf(s).alphaFloor; }),
                [](const RenderSettings& s) {
-                 return s.pmc.adapt != PmcAdapt::Off ? ""
+                 return pmcOf(s).adapt != PmcAdapt::Off ? ""
                                                      : "has no effect on pmc-er with --pmc-adapt off (the weights stay uniform)";
                }),
       realOption("caustic-prob", "probability of the caustic perturbation where it applies (gamma_caustic)", 0, 1,
-                 [](auto& s) -> auto& { return s.pmc.causticProb; }),
+                 [](auto& s) -> auto& { return pmcOf(s).causticProb; }),
       onlyWhen(integerOption("pmc-region", "region adaptation: side of the square regions in pixels", 1, 65536,
-                             [](auto& s) -> auto& { return s.pmc.regionSize; }),
+                             [](auto& s) -> auto& { return pmcOf(s).regionSize; }),
                regionAdaptationOnly),
       onlyWhen(integerOption("pmc-train-iterations", "region adaptation: iterations of the training population", 1,
-                             100000, [](auto& s) -> auto& { return s.pmc.trainIterations; }),
+                             100000, [](auto& s) -> auto& { return pmcOf(s).trainIterations; }),
                regionAdaptationOnly),
       realOption("pmc-drain",
                  "once the pool is used up, the population iterates until a member holds at most this share of "
                  "its energy, then deposits the rest where it stands (1: at once)",
-                 0, 1, [](auto& s) -> auto& { return s.pmc.drainRemainder; }, /*minOpen=*/true),
+                 0, 1, [](auto& s) -> auto& { return pmcOf(s).drainRemainder; }, /*minOpen=*/true),
       directSamplesOption()};
   addOptions(m.options, depositOptions());
-  m.validate = [](const RenderSettings& s) { validatePmcSettings(s.pmc, s.erpt); };
+  m.validate = [](const RenderSettings& s) { validatePmcSettings(pmcOf(s), erptOf(s)); };
   m.render = renderPmcEr;
   m.printSummary = printPmcSummary;
   m.addStats = [](RenderStats& to, const RenderStats& from) {

@@ -30,7 +30,7 @@ void expectErptMatchesPathTracerBlockByBlock(const Scene& scene, int spp, const 
   RenderSettings s;
   s.integrator = "erpt";
   s.spp = spp;
-  s.erpt = erpt;
+  erptOf(s) = erpt;
   test::expectMatchesPathTracerBlockByBlock(scene, s, 16, seed);
 }
 
@@ -118,7 +118,7 @@ TEST(StatisticalErpt, DirectionalLightSeedsInPlaceMatchPathTracerBlockByBlock) {
     RenderSettings s;
     s.integrator = "erpt";
     s.spp = 4;
-    s.erpt = erpt;
+    erptOf(s) = erpt;
     RenderStats stats;
     render(scene, s, stats);
     EXPECT_GT(stats.erpt.inPlace[kInPlaceDirectionalLight], 1000u);

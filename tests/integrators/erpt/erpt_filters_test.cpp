@@ -110,8 +110,8 @@ RenderSettings smallErpt(int size, int spp) {
   s.width = s.height = size;
   s.spp = spp;
   s.seed = 3;
-  s.erpt.mutationsPerPixel = 20;
-  s.erpt.chainLength = 20;
+  erptOf(s).mutationsPerPixel = 20;
+  erptOf(s).chainLength = 20;
   return s;
 }
 
@@ -138,7 +138,7 @@ TEST(NoiseFilters, OffByDefaultAndTheUnfilteredImageIsKept) {
   EXPECT_TRUE(plainStats.extraImages.empty());
   EXPECT_EQ(plainStats.erpt.discardedDeposits, 0u);
   RenderSettings pm = plain;
-  pm.erpt.pmFilterRadius = 3;
+  erptOf(pm).pmFilterRadius = 3;
   const RgbImage filtered = render(scene, pm, pmStats);
   auto extra = [&](const std::string& name) -> const RgbImage& {
     for (const auto& [n, img] : pmStats.extraImages)
@@ -155,7 +155,7 @@ TEST(NoiseFilters, OffByDefaultAndTheUnfilteredImageIsKept) {
   EXPECT_GT(proposals, 0.5 * double(pmStats.erpt.mutations));  // most proposals are complete paths
   EXPECT_LE(proposals, double(pmStats.erpt.mutations));
   RenderSettings consecutive = plain;
-  consecutive.erpt.maxConsecutive = 2;
+  erptOf(consecutive).maxConsecutive = 2;
   const RgbImage capped = render(scene, consecutive, consecutiveStats);
   EXPECT_GT(consecutiveStats.erpt.discardedDeposits, 0u);
   EXPECT_FALSE(sameImage(capped, unfiltered));
@@ -202,9 +202,9 @@ TEST(StatisticalErpt, DetailedBalanceFlowIsUnbiased) {
   RenderSettings s = smallErpt(128, 16);
   s.filterSet = true;
   s.filter = FilterKind::Box;
-  s.erpt.flow = FlowRule::DetailedBalance;
-  s.erpt.chainLength = 8;
-  s.erpt.directSamples = -1;
+  erptOf(s).flow = FlowRule::DetailedBalance;
+  erptOf(s).chainLength = 8;
+  erptOf(s).directSamples = -1;
   RenderStats stats;
   const RgbImage img = render(scene, s, stats);
   EXPECT_EQ(stats.invalidSamples, 0u);

@@ -36,7 +36,7 @@ TEST(ErptInPlace, NoDepositionEnergyDepositsEverySeedWhereItIs) {
   RenderStats pathStats;
   const RgbImage path = render(scene, s, pathStats);
   s.integrator = "erpt";
-  s.erpt.directSamples = -1;
+  erptOf(s).directSamples = -1;
   RenderStats stats;
   // As if the pilot pass had measured e_ave = 0.
   const RgbImage erpt = renderErptWith(scene, resolveSettings(scene, s), stats, ErptEnergies{0, 0});

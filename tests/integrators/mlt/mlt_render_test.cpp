@@ -23,7 +23,7 @@ RenderSettings mltSettings(int mutationsPerPixel) {
   RenderSettings s;
   s.integrator = "mlt";
   s.spp = 1;
-  s.erpt.mutationsPerPixel = mutationsPerPixel;
+  erptOf(s).mutationsPerPixel = mutationsPerPixel;
   return s;
 }
 
@@ -35,9 +35,9 @@ TEST(Mlt, SameImageForAnyThreadCount) {
   const Scene scene = defaultScene();
   RenderSettings s = mltSettings(16);
   s.width = s.height = 32;
-  s.erpt.directSamples = 2;
-  s.mlt.chains = 300;
-  s.mlt.bootstrapSpp = 4;
+  erptOf(s).directSamples = 2;
+  mltOf(s).chains = 300;
+  mltOf(s).bootstrapSpp = 4;
   s.threads = 1;
   RenderStats one;
   const RgbImage a = renderImage(scene, s, &one);
@@ -62,7 +62,7 @@ TEST(StatisticalMlt, CornellBoxMatchesReferences) {
   low.filter = FilterKind::Box;
   low.seed = 1;
   RenderSettings high = low;
-  high.erpt.mutationsPerPixel = 128;
+  erptOf(high).mutationsPerPixel = 128;
   high.seed = 2;
   RenderStats stats;
   const RgbImage a = renderImage(scene, low), b = renderImage(scene, high, &stats);
@@ -78,8 +78,8 @@ TEST(StatisticalMlt, CornellBoxMatchesReferences) {
 // 16 and 24 renders, 0.88 for 48); with 16 spp measured 0.97, worst |z| 2.40.
 TEST(StatisticalMlt, DefaultSceneMatchesPathTracerBlockByBlock) {
   RenderSettings s = mltSettings(128);
-  s.erpt.directSamples = 8;
-  s.mlt.bootstrapSpp = 16;
+  erptOf(s).directSamples = 8;
+  mltOf(s).bootstrapSpp = 16;
   test::expectMatchesPathTracerBlockByBlock(defaultScene(), s, 16, 7000);
 }
 
@@ -91,9 +91,9 @@ TEST(StatisticalMlt, DefaultSceneMatchesPathTracerBlockByBlock) {
 // take large steps stay on a path for many steps and their block means are heavy-tailed.
 TEST(StatisticalMlt, LargeStepsAloneMatchPathTracerBlockByBlock) {
   RenderSettings s = mltSettings(128);
-  s.erpt.directSamples = -1;
-  s.mlt.largeStepProbability = 1;
-  s.mlt.bootstrapSpp = 16;
+  erptOf(s).directSamples = -1;
+  mltOf(s).largeStepProbability = 1;
+  mltOf(s).bootstrapSpp = 16;
   test::expectMatchesPathTracerBlockByBlock(test::cornellBox(), s, 24, 7100);
 }
 
@@ -102,8 +102,8 @@ TEST(StatisticalMlt, LargeStepsAloneMatchPathTracerBlockByBlock) {
 // bootstrap's in-place deposits, exactly once. Measured: mean z^2 0.62, worst |z| 1.66.
 TEST(StatisticalMlt, PlasticBoxMatchesPathTracerBlockByBlock) {
   RenderSettings s = mltSettings(128);
-  s.erpt.directSamples = -1;
-  s.mlt.bootstrapSpp = 16;
+  erptOf(s).directSamples = -1;
+  mltOf(s).bootstrapSpp = 16;
   test::expectMatchesPathTracerBlockByBlock(loadScene(test::sourceDir() + "/tests/data/plastic-box.xml"), s, 16, 7200);
 }
 

@@ -19,7 +19,7 @@ RenderSettings pmcAt(int width, int height, int spp, int population) {
   s.width = width;
   s.height = height;
   s.spp = spp;
-  s.pmc.population = population;
+  pmcOf(s).population = population;
   return s;
 }
 
@@ -49,8 +49,8 @@ TEST(PmcPopulationBound, RefusesWhatWouldNotFitBeforeAllocating) {
 TEST(PmcPopulationBound, HugePopulationOnATinyImageRendersWithThePool) {
   Scene scene = loadScene(test::sourceDir() + "/scenes/default/scene.xml");
   RenderSettings s = pmcAt(8, 8, 1, 10000000);
-  s.erpt.directSamples = 2;
-  s.erpt.pilotSpp = 1;
+  erptOf(s).directSamples = 2;
+  erptOf(s).pilotSpp = 1;
   RenderStats stats;
   const RgbImage image = render(scene, resolveSettings(scene, s), stats);
   EXPECT_EQ(stats.pmc.population, 64u);

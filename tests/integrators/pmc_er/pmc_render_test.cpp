@@ -20,10 +20,10 @@ RenderSettings pmcSettings(int spp, PmcFlow flow, PmcAdapt adapt, int population
   RenderSettings s;
   s.integrator = "pmc-er";
   s.spp = spp;
-  s.pmc.flow = flow;
-  s.pmc.adapt = adapt;
-  s.pmc.population = population;
-  s.erpt.directSamples = -1;  // the paper's configuration: every path by PMC-ER
+  pmcOf(s).flow = flow;
+  pmcOf(s).adapt = adapt;
+  pmcOf(s).population = population;
+  erptOf(s).directSamples = -1;  // the paper's configuration: every path by PMC-ER
   return s;
 }
 
@@ -95,7 +95,7 @@ TEST(Pmc, SameImageForAnyThreadCount) {
     for (PmcAdapt adapt : {PmcAdapt::Region, PmcAdapt::Member}) {
       RenderSettings s = pmcSettings(2, flow, adapt, 300);
       s.width = s.height = 32;
-      s.erpt.directSamples = 2;
+      erptOf(s).directSamples = 2;
       s.threads = 1;
       const RgbImage a = renderImage(scene, s);
       s.threads = 2;

@@ -1,0 +1,35 @@
+// Each integrator's own options, held by type: RenderSettings carries what every integrator
+// shares, and an integrator's settings struct (ErptSettings, PmcSettings, MltSettings, ...)
+// lives here, declared in the integrator's own header. A settings struct not set yet reads as
+// its defaults; copying the holder copies the structs (a sub-render's changes stay its own).
+#pragma once
+
+#include <any>
+#include <map>
+#include <typeindex>
+
+namespace erpt {
+
+class IntegratorOptions {
+ public:
+  template <class T>
+  T& get() {
+    auto it = values_.find(std::type_index(typeid(T)));
+    if (it == values_.end()) it = values_.emplace(std::type_index(typeid(T)), std::any(T{})).first;
+    return *std::any_cast<T>(&it->second);
+  }
+  template <class T>
+  const T& get() const {
+    const auto it = values_.find(std::type_index(typeid(T)));
+    if (it == values_.end()) {
+      static const T defaults{};
+      return defaults;
+    }
+    return *std::any_cast<T>(&it->second);
+  }
+
+ private:
+  std::map<std::type_index, std::any> values_;
+};
+
+}  // namespace erpt
