@@ -5,6 +5,8 @@
 // bootstrap and in the large steps (their path-tracer samples and proposals).
 #include <benchmark/benchmark.h>
 
+#include "erpt/erpt_settings.h"
+#include "erpt/mlt_settings.h"
 #include "bench_support.h"
 #include "erpt/render.h"
 
@@ -27,11 +29,11 @@ void BM_MltRender(benchmark::State& state) {
   for (auto _ : state) {
     RenderStats stats;
     render(scene, s, stats);
-    mutations += stats.erpt.mutations;
-    rays += stats.erpt.rays;
+    mutations += erptStatsOf(stats).mutations;
+    rays += erptStatsOf(stats).rays;
     seconds += stats.seconds;
-    chain += stats.mlt.chainSeconds;
-    bootstrap += stats.mlt.bootstrapSeconds;
+    chain += mltStatsOf(stats).chainSeconds;
+    bootstrap += mltStatsOf(stats).bootstrapSeconds;
     const auto& stages = stats.stages.all();
     if (const auto it = stages.find("chain large step"); it != stages.end()) large += it->second;
   }

@@ -5,6 +5,8 @@
 // with the wavefront path tracer and making candidates) and training (region table).
 #include <benchmark/benchmark.h>
 
+#include "erpt/erpt_settings.h"
+#include "erpt/pmc_settings.h"
 #include "bench_support.h"
 #include "erpt/render.h"
 
@@ -27,12 +29,12 @@ void BM_PmcRender(benchmark::State& state) {
   for (auto _ : state) {
     RenderStats stats;
     render(scene, s, stats);
-    mutations += stats.erpt.mutations;
+    mutations += erptStatsOf(stats).mutations;
     seconds += stats.seconds;
-    chain += stats.pmc.chainSeconds;
-    resample += stats.pmc.resampleSeconds;
-    regenerate += stats.pmc.regenerateSeconds;
-    train += stats.pmc.trainSeconds;
+    chain += pmcStatsOf(stats).chainSeconds;
+    resample += pmcStatsOf(stats).resampleSeconds;
+    regenerate += pmcStatsOf(stats).regenerateSeconds;
+    train += pmcStatsOf(stats).trainSeconds;
   }
   state.SetLabel(state.range(1) ? "balance" : "equal-deposition");
   state.counters["chain_mutations/s"] = chain > 0 ? double(mutations) / chain : 0;

@@ -67,4 +67,10 @@ auto& erptOf(Settings& settings) {
   return settings.options.template get<ErptSettings>();
 }
 
+// The ErptStats of a RenderStats (its `own`): erptStatsOf(stats).field.
+template <class Stats>
+auto& erptStatsOf(Stats& stats) {
+  return stats.own.template get<ErptStats>();
+}
+
 }  // namespace erpt

@@ -40,4 +40,10 @@ auto& mltOf(Settings& settings) {
   return settings.options.template get<MltSettings>();
 }
 
+// The MltStats of a RenderStats (its `own`): mltStatsOf(stats).field.
+template <class Stats>
+auto& mltStatsOf(Stats& stats) {
+  return stats.own.template get<MltStats>();
+}
+
 }  // namespace erpt

@@ -70,4 +70,10 @@ auto& pmcOf(Settings& settings) {
   return settings.options.template get<PmcSettings>();
 }
 
+// The PmcStats of a RenderStats (its `own`): pmcStatsOf(stats).field.
+template <class Stats>
+auto& pmcStatsOf(Stats& stats) {
+  return stats.own.template get<PmcStats>();
+}
+
 }  // namespace erpt

@@ -9,11 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "erpt/erpt_settings.h"
 #include "erpt/image_io.h"
-#include "erpt/integrator_options.h"
-#include "erpt/mlt_settings.h"
-#include "erpt/pmc_settings.h"
+#include "erpt/per_integrator.h"
 #include "erpt/render_state.h"
 #include "erpt/scene.h"
 #include "erpt/stage_times.h"
@@ -51,7 +48,7 @@ struct RenderSettings {
   std::function<void(SeedStore&)> seedSink;
   // Each integrator's own options (erptOf(s), pmcOf(s), mltOf(s)); PMC-ER and MLT read the
   // options they share with ERPT (direct split, deposits, filters, perturbations) from ERPT's.
-  IntegratorOptions options;
+  PerIntegrator options;
   // The Embree scene. render() builds it once and every pass and sub-render (ERPT's pilot,
   // seed and direct passes, time-budgeted passes) shares it; unset: the integrator builds one.
   std::shared_ptr<const Tracer> tracer;
@@ -87,9 +84,9 @@ struct RenderStats {
   uint64_t invalidSamples = 0;  // NaN/Inf estimates, dropped and counted
   uint64_t refusedRays = 0;     // rays the tracer would not trace (kRefusedRay), over the render
   StageTimes stages;
-  ErptStats erpt;  // ERPT; for PMC-ER the chain step's counts
-  PmcStats pmc;
-  MltStats mlt;
+  // Each integrator's own statistics (erptStatsOf(stats), pmcStatsOf(stats), mltStatsOf(stats);
+  // PMC-ER and MLT count their chain steps in ERPT's).
+  PerIntegrator own;
   int spp = 0;  // samples per pixel rendered (time-budgeted renders choose it)
   int passes = 0;
   // Stopped early (RenderSettings::stop): `spp` samples per pixel of the requested ones were

@@ -12,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "erpt/erpt_settings.h"
 #include "commands.h"
 #include "option_scope.h"
 #include "erpt/error.h"
@@ -209,7 +210,7 @@ int runCompare(const CompareArgs& a) {
     row.seconds = row.series.seconds.empty() ? stats.seconds : row.series.seconds.back();
     row.spp = stats.spp;
     row.passes = stats.passes;
-    row.mutations = stats.erpt.mutations;
+    row.mutations = erptStatsOf(stats).mutations;
     row.error = compareImages(image, reference);
     const fs::path out = fs::path(a.outDir) / fileStem(name);
     writeImageAtomic(out.string() + ".exr", image);

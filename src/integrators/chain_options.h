@@ -5,6 +5,7 @@
 
 #include <vector>
 
+#include "erpt/erpt_settings.h"
 #include "erpt/options.h"
 
 namespace erpt {

@@ -3,6 +3,9 @@
 // IntegratorModule::printSummary).
 #pragma once
 
+#include "erpt/erpt_settings.h"
+#include "erpt/mlt_settings.h"
+#include "erpt/pmc_settings.h"
 #include "erpt/render.h"
 
 namespace erpt {

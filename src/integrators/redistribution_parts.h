@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "erpt/erpt_settings.h"
 #include "erpt/render.h"
 
 namespace erpt {

@@ -1,3 +1,4 @@
+#include "erpt/erpt_settings.h"
 #include "core/parallel.h"
 #include "erpt/render.h"
 

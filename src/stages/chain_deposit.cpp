@@ -67,18 +67,22 @@ double depositRecords(ChainQueue& chains, const ProposalQueue& proposals, const 
   const int w = density.width(), h = density.height();
   for (size_t i = range.begin; i < range.end; ++i) {
     // Only slots that took a step this round have records; a free slot's are zero.
-    uint32_t stuckPixel = kNoPixel;
+    bool stuck = false;
+    uint32_t stuckPixel = 0;
     if (filters.maxConsecutive > 0 && chains.step[i] > 0) {
       // The chain's path after this step: the same pixel as the step before extends the run.
       const uint32_t p = pixelCode(chains.filmX[i], chains.filmY[i]);
       chains.runLength[i] = p == chains.runPixel[i] ? chains.runLength[i] + 1 : 1;
       chains.runPixel[i] = p;
-      if (chains.runLength[i] > filters.maxConsecutive) stuckPixel = p;
+      stuck = chains.runLength[i] > filters.maxConsecutive;
+      stuckPixel = p;
     }
     for (size_t k = 0; k < kDepositsPerStep; ++k) {
       const DepositQueue::Row d = deposits.row(i * kDepositsPerStep + k);
       if (isBlack(d.energy)) continue;
-      if (pixelCode(d.x, d.y) == stuckPixel) {
+      // (A flag, not a reserved code: a film position in (-1, 0) x (-1, 0), inside a tent or
+      // gaussian filter's footprint, has the code a "no pixel" marker would have.)
+      if (stuck && pixelCode(d.x, d.y) == stuckPixel) {
         ++filters.discarded;
         filters.discardedEnergy += luminance(d.energy);
         continue;

@@ -3,6 +3,8 @@
 // option's name in the message, and render() applies the same ranges to programmatic settings.
 #include <gtest/gtest.h>
 
+#include "erpt/erpt_settings.h"
+#include "erpt/pmc_settings.h"
 #include "erpt/integrators.h"
 #include "erpt/options.h"
 #include "erpt/scene_loader.h"

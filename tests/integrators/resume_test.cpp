@@ -9,6 +9,8 @@
 #include <mutex>
 #include <thread>
 
+#include "erpt/erpt_settings.h"
+#include "erpt/pmc_settings.h"
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
 #include "support/block_bias.h"

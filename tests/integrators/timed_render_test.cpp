@@ -5,6 +5,7 @@
 
 #include <map>
 
+#include "erpt/erpt_settings.h"
 #include "integrators/noise_filters.h"
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
@@ -72,12 +73,12 @@ TEST(TimedRender, ErptKeepsMutationsPerSeed) {
   ASSERT_EQ(extra.size(), 3u);
   double proposals = 0;
   for (const Color& c : extra["proposals"].pixels) proposals += c.x;
-  EXPECT_GT(proposals, 0.5 * double(stats.erpt.mutations));
-  EXPECT_LE(proposals, double(stats.erpt.mutations));
+  EXPECT_GT(proposals, 0.5 * double(erptStatsOf(stats).mutations));
+  EXPECT_LE(proposals, double(erptStatsOf(stats).mutations));
   const RgbImage refiltered = proposalFilteredImage(extra["raw"], extra["chains"], extra["proposals"], 2);
   for (size_t i = 0; i < img.pixels.size(); ++i) ASSERT_EQ(img.pixels[i].y, refiltered.pixels[i].y) << i;
   const double expected = double(stats.spp) / 8 * 40 * 32 * 32;
-  EXPECT_NEAR(double(stats.erpt.mutations) / expected, 1.0, 0.15) << stats.erpt.mutations << " vs " << expected;
+  EXPECT_NEAR(double(erptStatsOf(stats).mutations) / expected, 1.0, 0.15) << erptStatsOf(stats).mutations << " vs " << expected;
   const Color m = test::meanOf(img), r = test::meanOf(readImage(test::sharedScenesDir() + "/cornell-box/TungstenRender.exr"));
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c] / r[c], 1.0, 0.05) << "channel " << c;
 }

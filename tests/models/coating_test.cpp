@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "erpt/erpt_settings.h"
 #include "models/bsdf.h"
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"

@@ -76,7 +76,7 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
 RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats& stats, const ErptEnergies& known) {
   const ErptSettings& o = erptOf(s);
   validateErptSettings(o);
-  ErptStats& es = stats.erpt;
+  ErptStats& es = erptStatsOf(stats);
   RgbImage direct;
   if (!s.resume) {  // else pilot energy, e_d and the direct image come with the state
     es.pilotEnergy = known.pilot >= 0 ? known.pilot : erptPilotEnergy(scene, s, stats);
@@ -185,7 +185,7 @@ IntegratorModule erptModule() {
   m.validate = [](const RenderSettings& s) { validateErptSettings(erptOf(s)); };
   m.render = renderErpt;
   m.printSummary = printErptSummary;
-  m.addStats = [](RenderStats& to, const RenderStats& from) { addErptStats(to.erpt, from.erpt); };
+  m.addStats = [](RenderStats& to, const RenderStats& from) { addErptStats(erptStatsOf(to), erptStatsOf(from)); };
   m.timedPasses = [](const Scene& scene, const RenderSettings& s, RenderStats& stats) -> PassRenderer {
     // One pilot for all passes (it is independent of every one of them), and e_d from the
     // configured spp, so each pass runs the configured mutations per seed.

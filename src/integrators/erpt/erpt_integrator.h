@@ -2,6 +2,7 @@
 
 #include <vector>
 
+#include "erpt/erpt_settings.h"
 #include "erpt/integrators.h"
 #include "erpt/render.h"
 

@@ -42,7 +42,7 @@ void printRejections(const char* prefix, const ErptStats& e) {
 }
 
 void printErptSummary(const RenderStats& stats) {
-  const ErptStats& e = stats.erpt;
+  const ErptStats& e = erptStatsOf(stats);
   auto pct = [](uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; };
   uint64_t inPlace = 0;
   for (uint64_t n : e.inPlace) inPlace += n;

@@ -166,7 +166,7 @@ void validateMltSettings(const RenderSettings& s) {
 
 RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
   validateMltSettings(s);
-  MltStats& ms = stats.mlt;
+  MltStats& ms = mltStatsOf(stats);
   const ErptSettings& options = erptOf(s);
   StepSettings step = stepSettingsOf(options);
   step.expectedDeposit = true;  // MLT's expected-value splatting of current and proposed paths
@@ -294,13 +294,13 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   const MltPolicy policy(setup.tracer, largeCtx, uint32_t(s.width) * uint32_t(s.height));
   ChainLanes::Config config{ctx, chainSettings, s.seed, kErptLaneSlots, ms.energyPerStep, s.stop,
                             setup.pool.threads(), &policy};
-  ChainLanes machine(setup.tracer, config, setup.film, stats.erpt, stats.stages);
+  ChainLanes machine(setup.tracer, config, setup.film, erptStatsOf(stats), stats.stages);
   const auto chainStart = std::chrono::steady_clock::now();
   const bool done = chains == 0 || (machine.startChains(starts, float(ms.energyPerStep)) && machine.finish());
   ms.chainSeconds = secondsSince(chainStart);
-  stats.erpt.erptSeconds = ms.chainSeconds;
-  stats.erpt.depositEnergy = ms.energyPerStep;
-  stats.rays += stats.erpt.rays;
+  erptStatsOf(stats).erptSeconds = ms.chainSeconds;
+  erptStatsOf(stats).depositEnergy = ms.energyPerStep;
+  stats.rays += erptStatsOf(stats).rays;
   if (!done) return partial();
 
   RgbImage image = machine.image(1.0);
@@ -344,8 +344,8 @@ IntegratorModule mltModule() {
   m.render = renderMlt;
   m.printSummary = printMltSummary;
   m.addStats = [](RenderStats& to, const RenderStats& from) {
-    addErptStats(to.erpt, from.erpt);  // the chain step's counts
-    addMltStats(to.mlt, from.mlt);
+    addErptStats(erptStatsOf(to), erptStatsOf(from));  // the chain step's counts
+    addMltStats(mltStatsOf(to), mltStatsOf(from));
   };
   m.scaleTimedPass = [](const RenderSettings& s, RenderSettings& pass) {
     // Each pass runs the configured mutations per pixel scaled by its share of the spp.

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "erpt/erpt_settings.h"
+#include "erpt/mlt_settings.h"
 #include "erpt/integrators.h"
 #include "erpt/render.h"
 

@@ -20,8 +20,8 @@ void addMltStats(MltStats& to, const MltStats& from) {
 }
 
 void printMltSummary(const RenderStats& stats) {
-  const MltStats& m = stats.mlt;
-  const ErptStats& e = stats.erpt;
+  const MltStats& m = mltStatsOf(stats);
+  const ErptStats& e = erptStatsOf(stats);
   std::fprintf(stderr,
                "mlt: b %.6g (bootstrap: %llu samples, %llu paths for the chains, %llu deposited in place holding "
                "%.4g), %.2f s\n",

@@ -80,7 +80,7 @@ namespace {
 void trainRegionTable(const Scene& scene, const RenderSettings& s, const StepConfig& ctx, PmcMixture& mixture,
                       RenderStats& stats) {
   const PmcSettings& p = pmcOf(s);
-  PmcStats& ps = stats.pmc;
+  PmcStats& ps = pmcStatsOf(stats);
   const uint32_t pixels = uint32_t(s.width) * uint32_t(s.height);
   RenderSettings ts = subRenderSettings(s);
   ts.seed = streamKey(s.seed, kTrainStream, 0);
@@ -94,8 +94,8 @@ void trainRegionTable(const Scene& scene, const RenderSettings& s, const StepCon
   PmcPopulation trainer(trainSetup, PmcPopulation::Config{ctx, chainSettingsOf(erptOf(s)), tp, ts.seed, nullptr}, uniform, trainStats);
   trainer.run(PoolRounds::all(StratifiedPool{pixels, uint32_t(ts.spp), ts.seed}), p.trainIterations);
   mixture.setRegionTable(trainer.regionSums(), 1.0);
-  ps.trainingIterations = trainStats.pmc.trainingIterations;
-  ps.trainSeconds = trainStats.pmc.trainSeconds + trainStats.pmc.regenerateSeconds + trainStats.pmc.resampleSeconds;
+  ps.trainingIterations = pmcStatsOf(trainStats).trainingIterations;
+  ps.trainSeconds = pmcStatsOf(trainStats).trainSeconds + pmcStatsOf(trainStats).regenerateSeconds + pmcStatsOf(trainStats).resampleSeconds;
   stats.rays += trainStats.rays;
   for (int r = 0; r < mixture.regionCount(); ++r)
     for (int k = 0; k < mixture.components(); ++k)
@@ -117,10 +117,10 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
   validatePmcSettings(pmcOf(requested), erptOf(requested));
   RenderSettings s = requested;
   pmcOf(s).population = usablePopulation(requested, availableMemoryBytes());
-  stats.pmc.requestedPopulation = uint64_t(pmcOf(requested).population);
+  pmcStatsOf(stats).requestedPopulation = uint64_t(pmcOf(requested).population);
   const PmcSettings& p = pmcOf(s);
-  ErptStats& es = stats.erpt;
-  PmcStats& ps = stats.pmc;
+  ErptStats& es = erptStatsOf(stats);
+  PmcStats& ps = pmcStatsOf(stats);
 
   RenderSetup setup(scene, s);
   FilmDensity density(setup.filter, s.width, s.height);
@@ -251,8 +251,8 @@ IntegratorModule pmcErModule() {
   m.render = renderPmcEr;
   m.printSummary = printPmcSummary;
   m.addStats = [](RenderStats& to, const RenderStats& from) {
-    addErptStats(to.erpt, from.erpt);  // the chain step's counts
-    addPmcStats(to.pmc, from.pmc);
+    addErptStats(erptStatsOf(to), erptStatsOf(from));  // the chain step's counts
+    addPmcStats(pmcStatsOf(to), pmcStatsOf(from));
   };
   m.scaleTimedPass = scaleDirectSamples;
   m.proposalFiltered = true;

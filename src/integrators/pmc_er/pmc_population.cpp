@@ -42,7 +42,7 @@ PmcPopulation::PmcPopulation(const RenderSetup& tracing, const Config& config, P
       config_(config),
       mixture_(mixture),
       stats_(stats),
-      pmc_(stats.pmc),
+      pmc_(pmcStatsOf(stats)),
       q_(size_t(config.pmc.population)),
       components_(mixture.components()) {
   const size_t n = slots(), k = size_t(components_);
@@ -106,12 +106,12 @@ bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::
   pmc_.meanDeposit = depositSteps_ > 0 ? depositSum_ / double(depositSteps_) : 0;
   if (config_.film) pmc_.steps = depositSteps_;
   for (int k = 0; k < kMutationKindCount; ++k) {
-    stats_.erpt.proposed[k] = counters_.proposed[k];
-    stats_.erpt.accepted[k] = counters_.accepted[k];
+    erptStatsOf(stats_).proposed[k] = counters_.proposed[k];
+    erptStatsOf(stats_).accepted[k] = counters_.accepted[k];
   }
-  for (int r = 0; r < kRejectReasonCount; ++r) stats_.erpt.rejected[r] = counters_.rejected[r];
-  stats_.erpt.discardedDeposits = filters_.discarded;
-  stats_.erpt.discardedEnergy = filters_.discardedEnergy;
+  for (int r = 0; r < kRejectReasonCount; ++r) erptStatsOf(stats_).rejected[r] = counters_.rejected[r];
+  erptStatsOf(stats_).discardedDeposits = filters_.discarded;
+  erptStatsOf(stats_).discardedEnergy = filters_.discardedEnergy;
   return true;
 }
 
@@ -298,7 +298,7 @@ void PmcPopulation::iterate() {
     std::copy(q_.chains.filmX.begin(), q_.chains.filmX.begin() + ptrdiff_t(n), fromX.begin());
     std::copy(q_.chains.filmY.begin(), q_.chains.filmY.begin() + ptrdiff_t(n), fromY.begin());
     const uint64_t rays = chainStep.run(q_, counters_);
-    stats_.erpt.rays += rays;
+    erptStatsOf(stats_).rays += rays;
     stats_.rays += rays;
     if (config_.film) {
       const auto t0 = std::chrono::steady_clock::now();
@@ -320,8 +320,8 @@ void PmcPopulation::collect(const std::vector<float>& fromX, const std::vector<f
   for (size_t i = 0; i < n; ++i) {
     if (!(energy_[i] > 0)) continue;
     const uint8_t kind = q_.proposals.mutation[i];
-    ++stats_.erpt.mutations;
-    ++stats_.erpt.deposits;
+    ++erptStatsOf(stats_).mutations;
+    ++erptStatsOf(stats_).deposits;
     depositSum_ += q_.chains.energy[i];
     ++depositSteps_;
     if (kind == uint8_t(MutationKind::None)) continue;

@@ -136,7 +136,7 @@ TEST(NoiseFilters, OffByDefaultAndTheUnfilteredImageIsKept) {
   const RenderSettings plain = smallErpt(32, 4);
   const RgbImage unfiltered = render(scene, plain, plainStats);
   EXPECT_TRUE(plainStats.extraImages.empty());
-  EXPECT_EQ(plainStats.erpt.discardedDeposits, 0u);
+  EXPECT_EQ(erptStatsOf(plainStats).discardedDeposits, 0u);
   RenderSettings pm = plain;
   erptOf(pm).pmFilterRadius = 3;
   const RgbImage filtered = render(scene, pm, pmStats);
@@ -152,12 +152,12 @@ TEST(NoiseFilters, OffByDefaultAndTheUnfilteredImageIsKept) {
   EXPECT_TRUE(sameImage(filtered, proposalFilteredImage(extra("raw"), extra("chains"), extra("proposals"), 3)));
   double proposals = 0;
   for (const Color& c : extra("proposals").pixels) proposals += c.x;
-  EXPECT_GT(proposals, 0.5 * double(pmStats.erpt.mutations));  // most proposals are complete paths
-  EXPECT_LE(proposals, double(pmStats.erpt.mutations));
+  EXPECT_GT(proposals, 0.5 * double(erptStatsOf(pmStats).mutations));  // most proposals are complete paths
+  EXPECT_LE(proposals, double(erptStatsOf(pmStats).mutations));
   RenderSettings consecutive = plain;
   erptOf(consecutive).maxConsecutive = 2;
   const RgbImage capped = render(scene, consecutive, consecutiveStats);
-  EXPECT_GT(consecutiveStats.erpt.discardedDeposits, 0u);
+  EXPECT_GT(erptStatsOf(consecutiveStats).discardedDeposits, 0u);
   EXPECT_FALSE(sameImage(capped, unfiltered));
   EXPECT_TRUE(sameImage(render(scene, plain, plainStats), unfiltered));
 }
@@ -209,8 +209,8 @@ TEST(StatisticalErpt, DetailedBalanceFlowIsUnbiased) {
   const RgbImage img = render(scene, s, stats);
   EXPECT_EQ(stats.invalidSamples, 0u);
   uint64_t inPlace = 0;
-  for (uint64_t n : stats.erpt.inPlace) inPlace += n;
-  EXPECT_EQ(stats.erpt.chains + inPlace, stats.erpt.seeds);  // one per seed, but those deposited in place
+  for (uint64_t n : erptStatsOf(stats).inPlace) inPlace += n;
+  EXPECT_EQ(erptStatsOf(stats).chains + inPlace, erptStatsOf(stats).seeds);  // one per seed, but those deposited in place
   const Color m = test::meanOf(img), r = test::meanOf(tungsten);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c] / r[c], 1.0, 0.01) << "channel " << c;
   std::printf("means %.4f %.4f %.4f vs %.4f %.4f %.4f, relMSE vs 128 reference %.3g\n", m.x, m.y, m.z, r.x, r.y, r.z,

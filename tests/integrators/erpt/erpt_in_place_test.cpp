@@ -40,13 +40,13 @@ TEST(ErptInPlace, NoDepositionEnergyDepositsEverySeedWhereItIs) {
   RenderStats stats;
   // As if the pilot pass had measured e_ave = 0.
   const RgbImage erpt = renderErptWith(scene, resolveSettings(scene, s), stats, ErptEnergies{0, 0});
-  EXPECT_EQ(stats.erpt.depositEnergy, 0.0);
-  EXPECT_EQ(stats.erpt.chains, 0u);
-  ASSERT_GT(stats.erpt.seeds, 100u);
-  EXPECT_EQ(stats.erpt.inPlace[kInPlaceNoDepositEnergy] + stats.erpt.inPlace[kInPlaceTooLong] +
-                stats.erpt.inPlace[kInPlaceZeroContribution] + stats.erpt.inPlace[kInPlaceNoMutation],
-            stats.erpt.seeds);
-  EXPECT_GT(stats.erpt.inPlace[kInPlaceNoDepositEnergy], stats.erpt.seeds * 9 / 10);
+  EXPECT_EQ(erptStatsOf(stats).depositEnergy, 0.0);
+  EXPECT_EQ(erptStatsOf(stats).chains, 0u);
+  ASSERT_GT(erptStatsOf(stats).seeds, 100u);
+  EXPECT_EQ(erptStatsOf(stats).inPlace[kInPlaceNoDepositEnergy] + erptStatsOf(stats).inPlace[kInPlaceTooLong] +
+                erptStatsOf(stats).inPlace[kInPlaceZeroContribution] + erptStatsOf(stats).inPlace[kInPlaceNoMutation],
+            erptStatsOf(stats).seeds);
+  EXPECT_GT(erptStatsOf(stats).inPlace[kInPlaceNoDepositEnergy], erptStatsOf(stats).seeds * 9 / 10);
   double sumPath = 0, sumErpt = 0;
   for (size_t i = 0; i < path.pixels.size(); ++i)
     for (int c = 0; c < 3; ++c) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "erpt/erpt_settings.h"
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
 #include "support/image_stats.h"
@@ -159,11 +160,11 @@ void expectStationary(MutationStrategy strategy, double bound, LensShape shape =
     RenderStats stats;
     const RgbImage img = renderErptImage(scene, r, &stats);
     uint64_t moved = 0;
-    for (uint64_t a : stats.erpt.accepted) moved += a;
-    EXPECT_GT(moved, stats.erpt.mutations / 3);
+    for (uint64_t a : erptStatsOf(stats).accepted) moved += a;
+    EXPECT_GT(moved, erptStatsOf(stats).mutations / 3);
     errors[level] = blockError(img, ref);
     std::printf("%d spp, %d mutations/pixel: %.1f%% accepted, block error %.5f\n", r.spp, r.mutations,
-                100.0 * double(moved) / double(stats.erpt.mutations), errors[level]);
+                100.0 * double(moved) / double(erptStatsOf(stats).mutations), errors[level]);
   }
   std::printf("ratio %.2f\n", errors[0] / errors[1]);
   // Noise alone halves the typical error for 4x the samples (measured: 2.3x lens, 2.2x

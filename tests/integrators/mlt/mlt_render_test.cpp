@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <string>
 
+#include "erpt/erpt_settings.h"
+#include "erpt/mlt_settings.h"
 #include "erpt/image_io.h"
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
@@ -45,10 +47,10 @@ TEST(Mlt, SameImageForAnyThreadCount) {
   const RgbImage b = renderImage(scene, s);
   test::expectBitIdentical(a, b);
   // Both kinds of move happened, and the chains did all the work asked of them.
-  EXPECT_GT(one.erpt.accepted[size_t(MutationKind::LargeStep)], 0u);
-  EXPECT_GT(one.erpt.accepted[size_t(MutationKind::Lens)], 0u);
-  EXPECT_EQ(one.mlt.chains, 300u);
-  EXPECT_EQ(one.erpt.mutations, one.mlt.chains * one.mlt.chainLength);
+  EXPECT_GT(erptStatsOf(one).accepted[size_t(MutationKind::LargeStep)], 0u);
+  EXPECT_GT(erptStatsOf(one).accepted[size_t(MutationKind::Lens)], 0u);
+  EXPECT_EQ(mltStatsOf(one).chains, 300u);
+  EXPECT_EQ(erptStatsOf(one).mutations, mltStatsOf(one).chains * mltStatsOf(one).chainLength);
 }
 
 // The Cornell box at 128x128 (box filter) with MLT's defaults: channel means within 1% of
@@ -67,7 +69,7 @@ TEST(StatisticalMlt, CornellBoxMatchesReferences) {
   RenderStats stats;
   const RgbImage a = renderImage(scene, low), b = renderImage(scene, high, &stats);
   test::expectCornellBoxConverges(a, b, 2.5, 6.0);
-  EXPECT_GT(stats.erpt.accepted[size_t(MutationKind::LargeStep)], 0u);
+  EXPECT_GT(erptStatsOf(stats).accepted[size_t(MutationKind::LargeStep)], 0u);
 }
 
 // Block by block (support/block_bias.h): 16 MLT renders of 64x64 against 16 path-traced ones

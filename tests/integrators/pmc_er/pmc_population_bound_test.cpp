@@ -53,8 +53,8 @@ TEST(PmcPopulationBound, HugePopulationOnATinyImageRendersWithThePool) {
   erptOf(s).pilotSpp = 1;
   RenderStats stats;
   const RgbImage image = render(scene, resolveSettings(scene, s), stats);
-  EXPECT_EQ(stats.pmc.population, 64u);
-  EXPECT_EQ(stats.pmc.requestedPopulation, 10000000u);
+  EXPECT_EQ(pmcStatsOf(stats).population, 64u);
+  EXPECT_EQ(pmcStatsOf(stats).requestedPopulation, 10000000u);
   EXPECT_EQ(image.width, 8);
 }
 

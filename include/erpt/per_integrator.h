@@ -1,7 +1,8 @@
-// Each integrator's own options, held by type: RenderSettings carries what every integrator
-// shares, and an integrator's settings struct (ErptSettings, PmcSettings, MltSettings, ...)
-// lives here, declared in the integrator's own header. A settings struct not set yet reads as
-// its defaults; copying the holder copies the structs (a sub-render's changes stay its own).
+// Each integrator's own data, held by type: RenderSettings and RenderStats carry what every
+// integrator shares, and an integrator's settings and statistics structs (ErptSettings,
+// PmcStats, ...) live here, declared in the integrator's own header. A struct not set yet
+// reads as its defaults; copying the holder copies the structs (a sub-render's changes stay
+// its own).
 #pragma once
 
 #include <any>
@@ -10,7 +11,7 @@
 
 namespace erpt {
 
-class IntegratorOptions {
+class PerIntegrator {
  public:
   template <class T>
   T& get() {
