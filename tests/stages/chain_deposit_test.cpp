@@ -1,6 +1,6 @@
 // The deposit stage's consecutive-sample filter drops only what it should: with the filter off
-// nothing is dropped, wherever a deposit lands inside the film density's support (a tent
-// filter's reaches one pixel beyond the image, where film positions are negative).
+// nothing is dropped, wherever a deposit lands inside the film density's support (a tent or
+// gaussian filter's reaches beyond the image, where film positions are negative).
 #include <gtest/gtest.h>
 
 #include "models/film.h"
