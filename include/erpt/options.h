@@ -19,6 +19,9 @@ namespace erpt {
 enum class OptionKind { Integer, Real, Choice, Flag, List };
 
 struct OptionSpec {
+  OptionSpec(std::string name_, std::string help_, OptionKind kind_)
+      : name(std::move(name_)), help(std::move(help_)), kind(kind_) {}
+
   std::string name;  // long name without dashes: "chain-length"
   std::string help;  // one line, without the default (front ends append it)
   OptionKind kind = OptionKind::Integer;
@@ -56,7 +59,8 @@ double parseOptionReal(const OptionSpec& option, const std::string& text);
 
 template <class Field>
 OptionSpec integerOption(std::string name, std::string help, double min, double max, Field field) {
-  OptionSpec o{std::move(name), std::move(help), OptionKind::Integer, min, max};
+  OptionSpec o(std::move(name), std::move(help), OptionKind::Integer);
+  o.min = min, o.max = max;
   o.number = [field](const RenderSettings& s) { return double(field(s)); };
   o.get = [field](const RenderSettings& s) { return std::to_string(field(s)); };
   o.set = [field, o](RenderSettings& s, const std::string& text) {
@@ -67,7 +71,8 @@ OptionSpec integerOption(std::string name, std::string help, double min, double 
 
 template <class Field>
 OptionSpec realOption(std::string name, std::string help, double min, double max, Field field, bool minOpen = false) {
-  OptionSpec o{std::move(name), std::move(help), OptionKind::Real, min, max, minOpen};
+  OptionSpec o(std::move(name), std::move(help), OptionKind::Real);
+  o.min = min, o.max = max, o.minOpen = minOpen;
   o.number = [field](const RenderSettings& s) { return double(field(s)); };
   o.get = [field](const RenderSettings& s) { return formatOptionNumber(double(field(s))); };
   o.set = [field, o](RenderSettings& s, const std::string& text) {
@@ -80,7 +85,7 @@ OptionSpec realOption(std::string name, std::string help, double min, double max
 template <class Enum, class Field>
 OptionSpec choiceOption(std::string name, std::string help, std::vector<std::pair<std::string, Enum>> values,
                         Field field) {
-  OptionSpec o{std::move(name), std::move(help), OptionKind::Choice};
+  OptionSpec o(std::move(name), std::move(help), OptionKind::Choice);
   for (const auto& v : values) o.choices.push_back(v.first);
   o.get = [field, values](const RenderSettings& s) {
     for (const auto& [word, value] : values)

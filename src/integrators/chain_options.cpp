@@ -41,11 +41,11 @@ OptionSpec directSamplesOption() {
 }
 
 std::vector<OptionSpec> depositOptions() {
-  OptionSpec pmFilter{"pm-filter",
+  OptionSpec pmFilter("pm-filter",
                       "proposed-mutations noise filter (ERPT paper 4.4; biased) of radius 3 unless "
                       "--pm-filter-radius says otherwise; also writes OUT-raw.exr (unfiltered) and "
                       "OUT-proposals.exr (the tally)",
-                      OptionKind::Flag};
+                      OptionKind::Flag);
   pmFilter.set = [](RenderSettings& s, const std::string&) {
     if (erptOf(s).pmFilterRadius < 0) erptOf(s).pmFilterRadius = 3;  // the paper's 7x7
   };

@@ -35,7 +35,7 @@ constexpr uint64_t kPoolStream = 0x706f6f6cull, kTrainStream = 0x747261696eull;
 namespace {
 // --radii r1,r2,...: the mixture's components in pixels.
 OptionSpec radiiOption() {
-  OptionSpec o{"radii", "perturbation radii of the mixture in pixels, comma separated", OptionKind::List};
+  OptionSpec o("radii", "perturbation radii of the mixture in pixels, comma separated", OptionKind::List);
   o.set = [](RenderSettings& s, const std::string& text) {
     std::vector<float> radii;
     size_t start = 0;
