@@ -18,7 +18,7 @@ void validateChainOptions(const ErptSettings& settings);
 // Time-budgeted passes of ERPT, PMC-ER and MLT: the direct pass's samples per pixel follow the
 // pass's share of the configured spp.
 void scaleDirectSamples(const RenderSettings& whole, RenderSettings& pass);
-// The direct-lighting pass of ERPT and PMC-ER (--direct-samples N > 0; else an empty image),
+// The direct-lighting pass of ERPT, PMC-ER and MLT (--direct-samples N > 0; else an empty image),
 // with its own random stream; adds its rays and stage times to `stats`.
 RgbImage renderDirectPass(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
 // The image ERPT and PMC-ER show: `chains` (the chains' image, resolved) plus `direct` (when

@@ -1,11 +1,11 @@
-#include "erpt/erpt_settings.h"
-#include "core/parallel.h"
 #include "erpt/render.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
+#include "core/parallel.h"
+#include "erpt/erpt_settings.h"
 #include "erpt/integrators.h"
 #include "integrators/noise_filters.h"
 #include "core/rng.h"
