@@ -41,7 +41,10 @@ struct IntegratorModule {
   // common ones (samples, rays, stage times) are added by render(). Optional.
   void (*addStats)(RenderStats& to, const RenderStats& from) = nullptr;
 
-  // Time-budgeted renders (render.h) run it in independent passes of growing spp. Optional:
+  // It keeps to a time budget itself: render() hands it settings with timeBudget > 0 instead
+  // of running it in independent passes (PMC-ER keeps one population iterating).
+  bool ownTimeBudget = false;
+  // Otherwise time-budgeted renders (render.h) run it in independent passes of growing spp. Optional:
   // once before the first pass, what every pass shares (ERPT: one pilot and a fixed e_d),
   // returned as the function that renders a pass (unset: `render`); before each pass (its spp
   // set), what the configured spp scales (MLT's mutations, the direct pass's samples).

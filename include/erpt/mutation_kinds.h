@@ -42,8 +42,7 @@ const char* rejectReasonName(RejectReason r);
 // Seeds whose energy is deposited at their own film position (their chains could not move, or
 // there is no deposition energy to run chains with). Never lost, always counted.
 enum InPlaceReason : uint8_t {
-  kInPlaceTooLong = 0,       // more vertices than a chain slot holds
-  kInPlaceNoMutation,        // no mutation of the strategy applies to the path
+  kInPlaceNoMutation = 0,    // no mutation of the strategy applies to the path (or its folded form)
   kInPlaceZeroContribution,  // f of the seed is zero or not finite in a chosen mutation's measure
   kInPlaceNoDepositEnergy,   // e_d = 0: the pilot pass found no seed energy
   kInPlaceDirectionalLight,  // lit by a directional light: no mutation moves such paths yet

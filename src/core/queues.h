@@ -14,6 +14,9 @@ ERPT_SOA_STRUCT(VertexQueue, ERPT_VERTEX_FIELDS)
 ERPT_SOA_VIEW(PathVertex, VertexQueue, ERPT_PATH_VERTEX_FIELDS)
 ERPT_SOA_STRUCT(SeedQueue, ERPT_SEED_FIELDS)
 
-enum VertexKind : uint8_t { kEyeVertex = 0, kNonSpecularVertex, kSpecularVertex, kLightVertex, kEnvironmentVertex };
+// kTailVertex: the last vertex a chain holds of a path longer than kMaxChainVertices; it keeps
+// its position, and its shading normal field holds the fixed factor of itself and everything
+// after it (erpt_path.h, foldPathTail).
+enum VertexKind : uint8_t { kEyeVertex = 0, kNonSpecularVertex, kSpecularVertex, kLightVertex, kEnvironmentVertex, kTailVertex };
 
 }  // namespace erpt

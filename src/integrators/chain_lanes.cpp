@@ -19,23 +19,12 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// The chains' film counts 2^-24 e_d (exact_film.h). Without e_d (the pilot found no energy)
-// only detailed balance runs chains; a fixed 2^-40 then, and what is too large for it goes
-// the large-deposit way.
-double exactFilmUnit(double depositEnergy) {
-  return depositEnergy > 0 && std::isfinite(depositEnergy) ? std::ldexp(depositEnergy, -24) : std::ldexp(1.0, -40);
-}
 }  // namespace
 
-// One chain queue and what its thread accumulates between merges (mergeLanes).
-struct ChainLanes::Lane {
-  explicit Lane(size_t slots) : q(slots) {}
-  StepQueues q;
-  StageTimes times;
-  DepositFilters filters;  // this lane's filter counts (the tally is shared)
-  std::vector<LargeDeposit> large;
-  double deposited = 0;
-  uint64_t rays = 0;
+// The chains' film counts 2^-24 e_d (exactFilmUnit). Without e_d (the pilot found no energy)
+// only detailed balance runs chains.
+struct ChainLanes::Lane : ChainLane {
+  using ChainLane::ChainLane;
 };
 
 ChainLanes::ChainLanes(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times)
@@ -59,7 +48,7 @@ ChainLanes::ChainLanes(const Tracer& tracer, const Config& config, Film& film, E
 
 ChainLanes::~ChainLanes() = default;
 
-bool ChainLanes::consume(const SeedStore& batch) {
+bool ChainLanes::consume(SeedStore& batch) {
   batch_ = &batch;
   pending_.clear();
   const double ed = config_.depositEnergy;
@@ -79,6 +68,7 @@ bool ChainLanes::consume(const SeedStore& batch) {
     const float e = luminance(batch.contribution(i));
     if (!(e > 0) || !std::isfinite(e)) continue;
     ++stats_.seeds;
+    foldSeedTail(config_.step, batch, i);
     // Drawn for every seed, so the chain numbering does not depend on which stay in place.
     const double u = uniformDouble(streamKey(config_.seed, kSeedStream, seedCounter_++), 0);
     // The signature alone says whether a chain can hold and move the seed (cheap, every seed):
@@ -240,30 +230,16 @@ void ChainLanes::depositInPlace(const SeedStore& store, size_t seed, double ener
   inPlaceDeposited_ += added;
 }
 
-void ChainLanes::step(Lane& lane) {
-  // The lane is one thread's work: each stage runs over the whole queue as one range.
-  const ChainStep chainStep{tracer_, config_.step, &lane.times, lane.q.chains.size(), config_.policy};
-  lane.rays += chainStep.run(lane.q, counters_);
-  auto start = std::chrono::steady_clock::now();
-  ConcurrentDeposits target{exact_, lane.large};
-  lane.deposited += applyDeposits(lane.q.chains, lane.q.proposals, lane.q.deposits, IndexRange{0, lane.q.chains.size()},
-                                  config_.step.measure.film, target, lane.filters);
-  lane.times.add("chain deposit", secondsSince(start));
-}
+void ChainLanes::step(Lane& lane) { lane.step(tracer_, config_.step, config_.policy, counters_, &exact_); }
 
 void ChainLanes::mergeLanes() {
-  for (auto& lane : lanes_) {
-    stats_.rays += lane->rays;
-    deposited_ += lane->deposited;
-    filters_.discarded += lane->filters.discarded;
-    filters_.discardedEnergy += lane->filters.discardedEnergy;
-    lane->rays = 0, lane->deposited = 0, lane->filters.discarded = 0, lane->filters.discardedEnergy = 0;
-    // Thread-seconds of the lanes, averaged: about the wall time each stage took.
-    for (const auto& [name, seconds] : lane->times.all()) times_.add(name, seconds / double(lanes_.size()));
-    lane->times = StageTimes{};
-    large_.insert(large_.end(), lane->large.begin(), lane->large.end());
-    lane->large.clear();
-  }
+  ChainLane::Totals totals;
+  // Thread-seconds of the lanes, averaged: about the wall time each stage took.
+  for (auto& lane : lanes_) lane->takeTotals(totals, times_, 1.0 / double(lanes_.size()), large_);
+  stats_.rays += totals.rays;
+  deposited_ += totals.deposited;
+  filters_.discarded += totals.discarded;
+  filters_.discardedEnergy += totals.discardedEnergy;
   uint64_t steps = 0;
   for (int k = 0; k < kMutationKindCount; ++k) {
     stats_.proposed[k] = counters_.proposed[k];

@@ -19,6 +19,7 @@
 
 #include "core/byte_stream.h"
 
+#include "integrators/chain_lane.h"
 #include "integrators/chain_settings.h"
 #include "stages/chain_step.h"
 #include "stages/chain_stages.h"
@@ -56,8 +57,9 @@ class ChainLanes {
   // depositing e / m per step; at most Config::maxChainsPerSeed, each then depositing
   // e / (m cap)) and runs steps whenever the queue is full; on return every chain of the batch
   // is in the queue (or done). Seeds no chain can move (InPlaceReason), and every seed when
-  // e_d = 0, are deposited at their own film position. False: stopped (Config::stop).
-  bool consume(const SeedStore& batch);
+  // e_d = 0, are deposited at their own film position. Seeds longer than a chain holds are
+  // folded in the batch (foldSeedTail). False: stopped (Config::stop).
+  bool consume(SeedStore& batch);
   // MLT: starts one chain at every seed of `starts` (its start states, resampled by the caller),
   // each of settings' chainLength steps depositing `energyPerStep`, numbered in seed order, and
   // runs steps whenever a queue is full. No seed is deposited in place. False: stopped.

@@ -47,7 +47,6 @@ struct WeightedSum {
 };
 
 RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats& stats, Clock::time_point start) {
-  if (!(s.timeBudget > 0) || s.timeBudget > 1e7) throw UsageError("--time must be in (0, 10000000] seconds");
   const IntegratorModule& module = integratorNamed(s.integrator);
   RenderSettings pass = subRenderSettings(s);
   const PassRenderer renderPass = module.timedPasses ? module.timedPasses(scene, s, stats) : PassRenderer(module.render);
@@ -144,12 +143,14 @@ RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats
     ThreadPool pool(s.threads);  // the BVH build uses the threads the render may use
     s.tracer = std::make_shared<const Tracer>(scene);
   }
+  if (s.timeBudget != 0 && (!(s.timeBudget > 0) || s.timeBudget > 1e7))
+    throw UsageError("--time must be in (0, 10000000] seconds");
   if (s.share.split() && s.timeBudget != 0)
     throw UsageError("a render over several processes needs a fixed --spp, not --time");
   if ((s.resume || s.onPasses) && s.timeBudget != 0) throw UsageError("checkpoints need a fixed --spp, not --time");
   const uint64_t refusedBefore = s.tracer->refusedRays();
   RgbImage image;
-  if (s.timeBudget != 0) {
+  if (s.timeBudget != 0 && !integrator.ownTimeBudget) {
     image = renderForTime(scene, s, stats, start);
   } else {
     image = renderOnce(scene, s, stats);  // stats.spp: the passes it completed

@@ -41,7 +41,6 @@ const char* mutationName(MutationKind k) {
 
 const char* inPlaceReasonName(InPlaceReason r) {
   switch (r) {
-    case kInPlaceTooLong: return "too long for a chain";
     case kInPlaceNoMutation: return "no mutation applies";
     case kInPlaceZeroContribution: return "zero or non-finite f";
     case kInPlaceNoDepositEnergy: return "no deposition energy (e_d = 0)";

@@ -13,11 +13,21 @@
 
 namespace erpt {
 
-// Longest path a chain can hold (eye and light included). Longer seeds keep their energy at
-// their own film position (InPlaceReason kInPlaceTooLong).
+// Most vertices a chain holds (eye and light included). A longer path is folded: its vertex
+// kMaxChainVertices - 1 becomes a tail vertex carrying the fixed factor of the rest
+// (foldPathTail), which no perturbation moves, so chains hold paths of any length.
 constexpr int kMaxChainVertices = 12;
 
-
+// The tail vertex's fixed factor R: everything from it to the light in area measure, its own
+// area factor as seen from the vertex before it included (stored in its shading-normal field,
+// which nothing reads at a tail vertex: a vertex field of its own would cost every vertex
+// queue 12 bytes for the few folded paths).
+// (Color is a Vec3.)
+inline Color tailVertexFactor(const PathVertex& v) { return v.ns; }
+inline void setTailVertexFactor(PathVertex& v, Color r) {
+  v.kind = kTailVertex;
+  v.ns = r;
+}
 
 // Unit direction from vertex a towards vertex b (an environment vertex b: its direction).
 Vec3 directionBetween(const PathVertex& a, const PathVertex& b);

@@ -39,6 +39,13 @@ void ExactFilm::addTo(RgbImage& image, double samplesPerPixel) const {
   }
 }
 
+void ExactFilm::moveInto(Film& film) {
+  for (size_t i = 0; i < counts_.size() / 3; ++i) {
+    film.addSums(i, double(counts_[3 * i]) * unit_, double(counts_[3 * i + 1]) * unit_, double(counts_[3 * i + 2]) * unit_);
+    counts_[3 * i] = counts_[3 * i + 1] = counts_[3 * i + 2] = 0;
+  }
+}
+
 void ExactFilm::save(ByteWriter& w) const {
   w.put(unit_);
   w.putVector(counts_);

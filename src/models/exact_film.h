@@ -20,6 +20,7 @@
 
 #include "core/byte_stream.h"
 #include "erpt/image_io.h"
+#include "models/film.h"
 
 namespace erpt {
 
@@ -36,6 +37,9 @@ class ExactFilm {
   void add(uint32_t pixel, Color c, float weight);
   // image += sums / samplesPerPixel (image: width x height).
   void addTo(RgbImage& image, double samplesPerPixel) const;
+  // film += sums, pixel by pixel (the film's sums then hold these deposits as doubles), and the
+  // counts start again from zero: for owners that pick a new unit per run (PMC-ER).
+  void moveInto(Film& film);
   double unit() const { return unit_; }
   void save(ByteWriter& w) const;
   void load(ByteReader& r);

@@ -20,6 +20,12 @@ class Film {
     sum_[3 * size_t(pixel) + 1] += c.y;
     sum_[3 * size_t(pixel) + 2] += c.z;
   }
+  // Adds double-precision sums (an ExactFilm's, exact_film.h).
+  void addSums(size_t pixel, double r, double g, double b) {
+    sum_[3 * pixel] += r;
+    sum_[3 * pixel + 1] += g;
+    sum_[3 * pixel + 2] += b;
+  }
   // A NaN/Inf estimate is dropped, never accumulated; returns false then (callers count them).
   bool addIfFinite(uint32_t pixel, Color c) {
     if (!isFinite(c)) return false;

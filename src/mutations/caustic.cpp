@@ -23,7 +23,7 @@ int causticSource(const uint8_t* kinds, int n) {
   if (n < 3 || kinds[1] != kNonSpecularVertex) return -1;
   int s = 2;
   while (s < n && kinds[s] == kSpecularVertex) ++s;
-  if (s >= n || kinds[s] == kEnvironmentVertex) return -1;
+  if (s >= n || kinds[s] == kEnvironmentVertex || kinds[s] == kTailVertex) return -1;
   return s;
 }
 

@@ -22,6 +22,7 @@ int connectionTarget(KindOf kindOf, int n) {
   for (int j = 1; j < n; ++j) {
     const uint8_t k = kindOf(j);
     if (k == kLightVertex || k == kEnvironmentVertex) return -1;  // reached by tracing
+    if (k == kTailVertex) return -1;  // a folded path's tail is never regenerated
     if (k == kSpecularVertex || (j + 1 < n && kindOf(j + 1) == kSpecularVertex)) continue;
     return j + 1;
   }
@@ -43,7 +44,7 @@ Color lensContribution(const MeasureContext& c, const PathVertex* path, int n, f
     const Vec3 toPrev = directionBetween(v, path[j - 1]);
     // Reached by tracing: a light or the environment ends the walk (solid-angle measure).
     if (v.kind == kLightVertex || v.kind == kEnvironmentVertex) return f * factors::emittedAlong(c, v, toPrev);
-    if (j + 1 >= n) return Color(0.0f);
+    if (j + 1 >= n || v.kind == kTailVertex) return Color(0.0f);
     const Vec3 toNext = directionBetween(v, path[j + 1]);
     if (v.kind == kSpecularVertex) {
       f *= factors::specularAt(c, v, toPrev, toNext, false);
@@ -56,7 +57,7 @@ Color lensContribution(const MeasureContext& c, const PathVertex* path, int n, f
     const PathVertex& t = path[j + 1];
     f *= factors::areaFactor(c, v, t);
     if (t.kind == kLightVertex || t.kind == kEnvironmentVertex) return f * factors::emittedAlong(c, t, -toNext);
-    if (j + 2 >= n) return Color(0.0f);
+    if (j + 2 >= n || t.kind == kTailVertex) return Color(0.0f);
     f *= factors::evalAt(c, t, -toNext, directionBetween(t, path[j + 2]));
     return f * factors::tailFrom(c, path, n, j + 2, tail);
   }
@@ -69,7 +70,14 @@ namespace {
 // Film positions a little outside the square or disk by rounding still count as inside.
 constexpr float kFilmSlack = 1e-3f;
 
-bool appliesToAnyChainPath(const uint8_t*, int n) { return n >= 2 && n <= kMaxChainVertices; }
+bool appliesToAnyChainPath(const uint8_t* kinds, int n) {
+  if (n < 2 || n > kMaxChainVertices) return false;
+  if (kinds[n - 1] != kTailVertex) return true;
+  // A folded path: the connection must come before the tail vertex, whose factor holds the
+  // direction from the vertex before it.
+  const int target = lensConnectionTarget(kinds, n);
+  return target > 0 && target < n - 1;
+}
 
 int lensTailStart(const uint8_t* kinds, int n) {
   // The connection target's incoming direction changes; the vertices after it do not.

@@ -91,10 +91,11 @@ float areaFactor(const MeasureContext& c, const PathVertex& from, const PathVert
 // acceptance ratio. It is still multiplied in: its colour is part of the path's colour, which
 // deposits carry, and with it f is the whole density in the mutation's measure, so the f of
 // different mutations can be compared (tests/mutations/erpt_measure_test.cpp).
-static Color fixedTail(const MeasureContext& c, const PathVertex* path, int n, int first) {
+Color fixedTail(const MeasureContext& c, const PathVertex* path, int n, int first) {
   Color f(1.0f);
   for (int k = first; k < n; ++k) {
     const PathVertex& v = path[k];
+    if (v.kind == kTailVertex) return f * tailVertexFactor(v);  // the folded rest, its area factor included
     const Vec3 toPrev = directionBetween(v, path[k - 1]);
     f *= areaFactor(c, path[k - 1], v);
     if (v.kind == kLightVertex || v.kind == kEnvironmentVertex) return f * emittedAlong(c, v, toPrev);

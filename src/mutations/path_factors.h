@@ -26,8 +26,10 @@ bool isPointLight(const MeasureContext& c, const PathVertex& v);
 // Solid angle at `from` per unit area at `to`: |cos_g(to)| / d^2 (point light 1 / d^2,
 // environment 1). Rule 3's geometry term without the cosine at `from` (the BSDF carries it).
 float areaFactor(const MeasureContext& c, const PathVertex& from, const PathVertex& to);
-// The factor of vertices [first, n) in area measure: from the cache when it holds it, else
-// computed (and cached when `cache` is given).
+// The factor of vertices [first, n) in area measure (a tail vertex stands for itself and all
+// after it).
+Color fixedTail(const MeasureContext& c, const PathVertex* path, int n, int first);
+// The same, from the cache when it holds it, else computed (and cached when `cache` is given).
 Color tailFrom(const MeasureContext& c, const PathVertex* path, int n, int first, FixedTail* cache);
 
 }  // namespace erpt::factors

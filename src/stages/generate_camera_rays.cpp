@@ -25,7 +25,12 @@ void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixels, co
     // Sample s takes a stratum in x and one in y, each by its own per-pixel permutation (a
     // Latin hypercube). Permuting x too makes every sample uniform over the pixel on its own,
     // so the first k of the spp samples are an unbiased render at k spp (sample passes).
-    const uint32_t keyX = uint32_t(streamKey(ctx.seed, pixel, ~1ull)), keyY = uint32_t(streamKey(ctx.seed, pixel, ~0ull));
+    // Samples from spp on (PMC-ER's pool under a time budget) stratify block by block: block
+    // b = s / spp is another Latin hypercube of spp strata with its own permutations.
+    const uint32_t block = s / spp;
+    s %= spp;
+    const uint32_t keyX = uint32_t(streamKey(ctx.seed, pixel, ~1ull - 2 * uint64_t(block))),
+                   keyY = uint32_t(streamKey(ctx.seed, pixel, ~0ull - 2 * uint64_t(block)));
     float ux = (float(permuteIndex(s, spp, keyX)) + uniformFloat(key, kDimFilmX)) / float(spp);
     float uy = (float(permuteIndex(s, spp, keyY)) + uniformFloat(key, kDimFilmY)) / float(spp);
     filmX[i] = float(pixel % uint32_t(ctx.width)) + 0.5f + ctx.filter.sampleOffset(std::min(ux, 0x1.fffffep-1f));

@@ -2,6 +2,7 @@
 // the summary; options shared with ERPT (filters, --time) work.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 
 #include "erpt/image_io.h"
@@ -42,9 +43,18 @@ TEST(PmcCli, FiltersAndTimeBudgetsWork) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   for (const char* f : {"p.exr", "p-raw.exr", "p-chains.exr", "p-proposals.exr", "p-strategy.exr"})
     EXPECT_TRUE(std::filesystem::exists(dir.file(f))) << f;
+  // Under --time one population takes whole rounds of the pool (every pixel the same number
+  // of samples) while the next fits: the pool taken is a multiple of the 24 x 24 pixels.
   r = test::runCli("render -q " + defaultScene() + " --integrator pmc-er --width 24 --height 24 --population 200 --time 1 -o " + out);
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  EXPECT_NE(r.output.find("passes"), std::string::npos) << r.output;
+  unsigned long long taken = 0, size = 0;
+  const size_t at = r.output.find("pool ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  ASSERT_EQ(std::sscanf(r.output.c_str() + at, "pool %llu of %llu", &taken, &size), 2) << r.output;
+  EXPECT_EQ(taken, size);
+  EXPECT_GT(taken, 0u);
+  EXPECT_EQ(taken % 576, 0u) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("p-strategy.exr")));
 }
 
 }  // namespace

@@ -109,7 +109,8 @@ LaneRun runLanes(const ErptWorld& w, const StepConfig& ctx, const ChainSettings&
   ChainLanes::Config config{ctx, settings, 11, 64, depositEnergy};
   config.lanes = lanes;
   ChainLanes chains(*w.tracer, config, film, run.stats, times);
-  EXPECT_TRUE(chains.consume(w.seeds));
+  SeedStore seeds = w.seeds;  // consume folds long seeds in place
+  EXPECT_TRUE(chains.consume(seeds));
   EXPECT_TRUE(chains.finish());
   run.image = chains.image(1.0);
   return run;

@@ -103,6 +103,34 @@ void trainRegionTable(const Scene& scene, const RenderSettings& s, const StepCon
 }
 }  // namespace
 
+StepSettings pmcStepSettings(const RenderSettings& s) {
+  // The disk lens and Veach caustic units (sizes from the mixture), the families the path
+  // allows (Mixed's), detailed-balance deposits for Balance.
+  StepSettings step = stepSettingsOf(erptOf(s));  // the deposit rule
+  step.strategy = MutationStrategy::Mixed;
+  step.lensShape = LensShape::Disk;
+  step.causticAngle = CausticAngle::Veach;
+  step.flow = pmcOf(s).flow == PmcFlow::Balance ? FlowRule::DetailedBalance : FlowRule::EqualDeposition;
+  return step;
+}
+
+namespace {
+// The summary's energies, from what the render did.
+void summarizeEnergies(RenderStats& stats) {
+  ErptStats& es = erptStatsOf(stats);
+  PmcStats& ps = pmcStatsOf(stats);
+  es.erptSeconds = ps.chainSeconds + ps.resampleSeconds;
+  // PMC-ER needs no pilot (its energies come from the pool); e_ave for the statistics is the
+  // pool's own mean seed energy, what ERPT's pilot pass estimates.
+  es.pilotEnergy = ps.poolUsed > 0 ? ps.poolEnergy / double(ps.poolUsed) : 0;
+  // Eq. 4 with the steps the render took (E_total = the pool's seed energy): what each would
+  // deposit if all were equal.
+  const double steps = double(ps.steps);
+  ps.depositEnergy = steps > 0 ? es.pilotEnergy * double(ps.poolUsed) / steps : 0;
+  es.depositEnergy = ps.depositEnergy;
+}
+}  // namespace
+
 int usablePopulation(const RenderSettings& s, size_t availableBytes) {
   const double pool = double(s.width) * double(s.height) * double(std::max(1, s.spp));
   const int population = int(std::min(double(pmcOf(s).population), pool));
@@ -114,6 +142,7 @@ int usablePopulation(const RenderSettings& s, size_t availableBytes) {
 }
 
 RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
+  const auto start = std::chrono::steady_clock::now();
   validatePmcSettings(pmcOf(requested), erptOf(requested));
   RenderSettings s = requested;
   pmcOf(s).population = usablePopulation(requested, availableMemoryBytes());
@@ -124,16 +153,15 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
 
   RenderSetup setup(scene, s);
   FilmDensity density(setup.filter, s.width, s.height);
-  // The chain step's view of the kernel: the disk lens and Veach caustic units (sizes from
-  // the mixture), the families the path allows (Mixed's), detailed-balance deposits for Balance.
-  StepSettings step = stepSettingsOf(erptOf(s));  // the deposit rule
-  step.strategy = MutationStrategy::Mixed;
-  step.lensShape = LensShape::Disk;
-  step.causticAngle = CausticAngle::Veach;
-  step.flow = p.flow == PmcFlow::Balance ? FlowRule::DetailedBalance : FlowRule::EqualDeposition;
-  const StepConfig ctx{MeasureContext{scene, setup.lights, setup.camera, density}, step};
+  const StepConfig ctx{MeasureContext{scene, setup.lights, setup.camera, density}, pmcStepSettings(s)};
   const uint32_t pixels = uint32_t(s.width) * uint32_t(s.height);
   PmcMixture mixture(p, s.width, s.height);
+  if (s.timeBudget > 0) {
+    if (p.adapt == PmcAdapt::Region) trainRegionTable(scene, s, ctx, mixture, stats);
+    const RgbImage image = renderPmcForTime(scene, s, PmcTimeParts{setup, ctx, mixture, start}, stats);
+    summarizeEnergies(stats);
+    return image;
+  }
   RgbImage direct;
   // Training and the direct pass come before the passes (a resumed render has their
   // results in its state). A split render runs them even when stopped: its ranks must make
@@ -187,14 +215,7 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
   };
   passes.image = [&](int done) { return image(done, nullptr); };
   renderInSamplePasses(s, pixels, stats, passes);
-  es.erptSeconds = ps.chainSeconds + ps.resampleSeconds;
-  // PMC-ER needs no pilot (its energies come from the pool); e_ave for the statistics is the
-  // pool's own mean seed energy, what ERPT's pilot pass estimates.
-  es.pilotEnergy = ps.poolUsed > 0 ? ps.poolEnergy / double(ps.poolUsed) : 0;
-  // Eq. 4 with the steps the render took: what each would deposit if all were equal.
-  const double steps = double(ps.steps);
-  ps.depositEnergy = steps > 0 ? es.pilotEnergy * double(pixels) * double(stats.spp) / steps : 0;
-  es.depositEnergy = ps.depositEnergy;
+  summarizeEnergies(stats);
   if (stats.spp == 0) return passes.image(1);  // stopped before the first pass: black
   stats.extraImages.emplace_back("strategy", population.strategyImage());
   return image(stats.spp, &stats.extraImages);
@@ -205,6 +226,7 @@ IntegratorModule pmcErModule() {
   m.name = "pmc-er";
   m.description = "population Monte Carlo energy redistribution (Lai, Fan, Chenney, Dyer), unbiased";
   m.samplePasses = true;
+  m.ownTimeBudget = true;
   // The mixture sets the mutation kinds, shapes and sizes; energies come from the pool (no
   // pilot), and its flow has its own option.
   m.options = {
@@ -254,7 +276,6 @@ IntegratorModule pmcErModule() {
     addErptStats(erptStatsOf(to), erptStatsOf(from));  // the chain step's counts
     addPmcStats(pmcStatsOf(to), pmcStatsOf(from));
   };
-  m.scaleTimedPass = scaleDirectSamples;
   m.proposalFiltered = true;
   return m;
 }

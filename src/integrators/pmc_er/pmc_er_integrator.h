@@ -1,5 +1,7 @@
 #pragma once
 
+#include <chrono>
+
 #include "erpt/erpt_settings.h"
 #include "erpt/pmc_settings.h"
 #include "erpt/integrators.h"
@@ -19,5 +21,23 @@ IntegratorModule pmcErModule();
 // would need more than 80% of `availableBytes` (0: unknown, not checked), before anything is
 // allocated or traced.
 int usablePopulation(const RenderSettings& s, size_t availableBytes);
+
+struct RenderSetup;
+struct StepConfig;
+struct StepSettings;
+class PmcMixture;
+// The chain step's view of PMC-ER's kernel (the mixture picks the sizes).
+StepSettings pmcStepSettings(const RenderSettings& s);
+// What a PMC-ER render under --time shares with one of fixed spp (renderPmcEr sets them up and
+// trains the mixture's region table first).
+struct PmcTimeParts {
+  RenderSetup& setup;
+  const StepConfig& ctx;
+  PmcMixture& mixture;
+  std::chrono::steady_clock::time_point start;  // the render's start: the budget counts from it
+};
+// --time: one population over an open-ended pool, taking whole rounds while the next fits in
+// the budget (pmc_time_budget.cpp); sets stats.spp to the rounds taken.
+RgbImage renderPmcForTime(const Scene& scene, const RenderSettings& s, const PmcTimeParts& parts, RenderStats& stats);
 
 }  // namespace erpt

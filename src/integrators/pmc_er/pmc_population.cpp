@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/parallel.h"
 #include "stages/chain_step.h"
 #include "integrators/systematic_resampling.h"
 #include "core/rng.h"
@@ -43,11 +44,9 @@ PmcPopulation::PmcPopulation(const RenderSetup& tracing, const Config& config, P
       mixture_(mixture),
       stats_(stats),
       pmc_(pmcStatsOf(stats)),
-      q_(size_t(config.pmc.population)),
+      slotCount_(size_t(std::max(1, config.pmc.population))),
       components_(mixture.components()) {
   const size_t n = slots(), k = size_t(components_);
-  spareChains_.resize(n);
-  spareVertices_.resize(n * kMaxChainVertices);
   energy_.assign(n, 0.0);
   alphaSum_.assign(n * k, 0.0);
   alpha_.assign(n * k, 1.0f / float(k));
@@ -62,13 +61,22 @@ PmcPopulation::PmcPopulation(const RenderSetup& tracing, const Config& config, P
     tally_.assign(pixels, 0);
     filters_.proposalTally = &tally_;
   }
+  for (size_t first = 0; first < n; first += kPmcLaneSlots) {
+    const size_t rows = std::min(kPmcLaneSlots, n - first);
+    lanes_.push_back(std::make_unique<ChainLane>(rows));
+    lanes_.back()->filters.maxConsecutive = filters_.maxConsecutive;
+    lanes_.back()->filters.proposalTally = filters_.proposalTally;
+    spareChains_.emplace_back().resize(rows);
+    spareVertices_.emplace_back().resize(rows * kMaxChainVertices);
+  }
+  records_.resize(lanes_.size());
   pmc_.population = n;
   pmc_.radiusCount = components_;
   for (int i = 0; i < components_; ++i) pmc_.radii[i] = mixture.radii()[size_t(i)];
 }
 
 bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::function<void(double)>& progress,
-                        const std::atomic<bool>* stop) {
+                        const std::atomic<bool>* stop, const std::function<size_t(size_t)>& allowed) {
   const PmcSettings& s = config_.pmc;
   // Each run its own member streams and combs; a pick is keyed by its position in the whole
   // pool, unique over runs and ranks. (The first run of a render keeps the render's seed.)
@@ -78,19 +86,29 @@ bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::
   std::fill(energy_.begin(), energy_.end(), 0.0);  // after a stopped run, what it held is dropped
   candidates_.clear();
   candidateEnergy_.clear();
-  pmc_.poolSize += rounds.size();
   const size_t perIteration = std::max<size_t>(1, size_t(std::llround(s.resampleRate * double(slots()))));
   const int drain = drainIterations(s.resampleRate, s.drainRemainder);
   regenerate(rounds, std::min(slots(), rounds.size()));
   resample(0, slots());
+  large_.clear();
+  exact_.reset();
+  if (config_.film) {
+    // After the first resampling every member holds the same energy: its deposit per step
+    // sets the unit of this run's exact film.
+    const double perStep = energy_.empty() ? 0.0 : energy_[0] * s.resampleRate / s.mutationsPerMember;
+    exact_ = std::make_unique<ExactFilm>(config_.film->width(), config_.film->height(), exactFilmUnit(perStep), true);
+  }
   int drained = 0;
   size_t members = slots();
+  bool taking = true;
   for (uint64_t it = 1;; ++it) {
     if (stopRequested(stop)) return false;
     iterate();
     if (maxIterations >= 0 && it >= uint64_t(maxIterations)) break;
-    if (poolCursor_ < rounds.size()) {
-      regenerate(rounds, std::min(perIteration, rounds.size() - poolCursor_));
+    const size_t cap = allowed ? std::min(rounds.size(), allowed(poolCursor_)) : rounds.size();
+    taking = taking && poolCursor_ < cap;
+    if (taking) {
+      regenerate(rounds, std::min(perIteration, cap - poolCursor_));
     } else if (drained++ >= drain) {
       break;
     } else {
@@ -102,7 +120,12 @@ bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::
     resample(it, members);
     if (progress) progress(double(poolCursor_) / double(std::max<size_t>(1, rounds.size())));
   }
-  if (config_.film) depositRemaining();
+  pmc_.poolSize += allowed ? poolCursor_ : rounds.size();  // an open-ended pool: what was taken
+  if (config_.film) {
+    depositRemaining();
+    addLargeDeposits(large_, config_.step.measure.film, *config_.film);
+    exact_->moveInto(*config_.film);
+  }
   pmc_.meanDeposit = depositSteps_ > 0 ? depositSum_ / double(depositSteps_) : 0;
   if (config_.film) pmc_.steps = depositSteps_;
   for (int k = 0; k < kMutationKindCount; ++k) {
@@ -179,6 +202,7 @@ void PmcPopulation::absorb(SeedStore& batch, const PoolRounds& rounds, size_t fi
     const float e = luminance(batch.contribution(i));
     if (!(e > 0) || !std::isfinite(e)) continue;
     pmc_.poolEnergy += e;
+    foldSeedTail(ctx, batch, i);
     if (seedSignatureReason(ctx, batch, i) != kInPlaceReasonCount) {
       ++pmc_.inPlaceSeeds;
       if (config_.film) deposited_ += depositSeedInPlace(ctx.measure.film, batch, i, e, *config_.film);
@@ -237,14 +261,19 @@ void PmcPopulation::resample(uint64_t iteration, size_t members) {
       ++pmc_.eliminated;
       pmc_.energyEliminated += energy_[i];
     }
+    const ChainLane& from = laneOf(i);
+    const size_t row = rowOf(i);
     for (uint32_t c = 0; c < counts[i]; ++c, ++slot) {
-      spareChains_.copyRow(slot, q_.chains, i);
-      for (size_t j = 0; j < q_.chains.vertexCount[i]; ++j)
-        spareVertices_.copyRow(slot * kMaxChainVertices + j, q_.chainVertices, i * kMaxChainVertices + j);
+      ChainQueue& to = spareChains_[slot / kPmcLaneSlots];
+      VertexQueue& toVertices = spareVertices_[slot / kPmcLaneSlots];
+      const size_t toRow = rowOf(slot);
+      to.copyRow(toRow, from.q.chains, row);
+      for (size_t j = 0; j < from.q.chains.vertexCount[row]; ++j)
+        toVertices.copyRow(toRow * kMaxChainVertices + j, from.q.chainVertices, row * kMaxChainVertices + j);
       if (c > 0) {
         // A copy moves on with its own random stream.
-        spareChains_.key[slot] = streamKey(runSeed_, kMemberStream, chainCounter_++);
-        spareChains_.step[slot] = 0;
+        to.key[toRow] = streamKey(runSeed_, kMemberStream, chainCounter_++);
+        to.step[toRow] = 0;
         ++pmc_.split;
       }
       for (size_t j = 0; j < k; ++j) alphaSum[slot * k + j] = alphaSum_[i * k + j];
@@ -257,14 +286,16 @@ void PmcPopulation::resample(uint64_t iteration, size_t members) {
     pmc_.membersBorn += copies > 0;
     pmc_.split += copies > 1 ? copies - 1 : 0;
     for (uint32_t c = 0; c < copies; ++c, ++slot) {
-      loadChainFromSeed(spareChains_, spareVertices_, slot, candidates_, j,
-                        streamKey(runSeed_, kMemberStream, chainCounter_++), 0, 0);
+      loadChainFromSeed(spareChains_[slot / kPmcLaneSlots], spareVertices_[slot / kPmcLaneSlots], rowOf(slot), candidates_,
+                        j, streamKey(runSeed_, kMemberStream, chainCounter_++), 0, 0);
       energy[slot] = tau;  // new members start with uniform alpha (zero sums)
     }
   }
-  for (; slot < n; ++slot) spareChains_.stepsLeft[slot] = 0;  // only when nothing has energy
-  std::swap(q_.chains, spareChains_);
-  std::swap(q_.chainVertices, spareVertices_);
+  for (; slot < n; ++slot) spareChains_[slot / kPmcLaneSlots].stepsLeft[rowOf(slot)] = 0;  // only when nothing has energy
+  for (size_t l = 0; l < lanes_.size(); ++l) {
+    std::swap(lanes_[l]->q.chains, spareChains_[l]);
+    std::swap(lanes_[l]->q.chainVertices, spareVertices_[l]);
+  }
   energy_.swap(energy);
   alphaSum_.swap(alphaSum);
   candidates_.clear();
@@ -288,65 +319,84 @@ void PmcPopulation::iterate() {
   }
   for (size_t i = 0; i < n; ++i) {
     const bool member = energy_[i] > 0;
-    q_.chains.stepsLeft[i] = member ? uint32_t(steps) : 0;
-    q_.chains.energy[i] = member ? float(energy_[i] * s.resampleRate / steps) : 0.0f;
+    ChainQueue& chains = laneOf(i).q.chains;
+    chains.stepsLeft[rowOf(i)] = member ? uint32_t(steps) : 0;
+    chains.energy[rowOf(i)] = member ? float(energy_[i] * s.resampleRate / steps) : 0.0f;
   }
-  const ChainStep chainStep{tracing_.tracer, config_.step, &stats_.stages, kGrain, &mixture_};
-  std::vector<float> fromX(n), fromY(n);
-  for (int t = 0; t < steps; ++t) {
-    // Where each member stands before the step (its proposal's y).
-    std::copy(q_.chains.filmX.begin(), q_.chains.filmX.begin() + ptrdiff_t(n), fromX.begin());
-    std::copy(q_.chains.filmY.begin(), q_.chains.filmY.begin() + ptrdiff_t(n), fromY.begin());
-    const uint64_t rays = chainStep.run(q_, counters_);
-    erptStatsOf(stats_).rays += rays;
-    stats_.rays += rays;
-    if (config_.film) {
-      const auto t0 = std::chrono::steady_clock::now();
-      deposited_ += applyDeposits(q_.chains, q_.proposals, q_.deposits, IndexRange{0, n}, config_.step.measure.film,
-                                  *config_.film, filters_);
-      stats_.stages.add("chain deposit", secondsSince(t0));
-    }
-    collect(fromX, fromY);
-  }
+  forEachRange("pmc lanes", lanes_.size(), 1, [&](IndexRange r) {
+    for (size_t l = r.begin; l < r.end; ++l) runLane(l, steps);
+  });
+  // In lane order, so that the sums below are the same for any thread count.
+  ChainLane::Totals totals;
+  // Lane thread-seconds over the threads that ran them: about the wall time of each stage.
+  const double threads = double(std::max<size_t>(1, std::min(lanes_.size(), workerSlots())));
+  for (auto& lane : lanes_) lane->takeTotals(totals, stats_.stages, 1.0 / threads, large_);
+  erptStatsOf(stats_).rays += totals.rays;
+  stats_.rays += totals.rays;
+  deposited_ += totals.deposited;
+  filters_.discarded += totals.discarded;
+  filters_.discardedEnergy += totals.discardedEnergy;
+  for (size_t l = 0; l < lanes_.size(); ++l)
+    for (const StepRecord& r : records_[l]) collect(l * kPmcLaneSlots + r.row, r);
   for (size_t i = 0; i < n; ++i) energy_[i] *= 1 - s.resampleRate;
   ++(config_.film ? pmc_.iterations : pmc_.trainingIterations);
   (config_.film ? pmc_.chainSeconds : pmc_.trainSeconds) += secondsSince(start);
 }
 
-void PmcPopulation::collect(const std::vector<float>& fromX, const std::vector<float>& fromY) {
-  const size_t n = slots(), k = size_t(components_);
-  const int w = tracing_.film.width(), h = tracing_.film.height();
-  const bool member = mixture_.adapt() == PmcAdapt::Member;
-  for (size_t i = 0; i < n; ++i) {
-    if (!(energy_[i] > 0)) continue;
-    const uint8_t kind = q_.proposals.mutation[i];
-    ++erptStatsOf(stats_).mutations;
-    ++erptStatsOf(stats_).deposits;
-    depositSum_ += q_.chains.energy[i];
-    ++depositSteps_;
-    if (kind == uint8_t(MutationKind::None)) continue;
-    const size_t c = q_.proposals.component[i];
-    const float q = q_.proposals.acceptance[i];
-    ++pmc_.proposed[c][kind];
-    pmc_.accepted[c][kind] += q > 0 && q_.proposals.reason[i] != kRejectByChance;
-    pmc_.acceptanceSum[c][kind] += q;
-    if (member) alphaSum_[i * k + c] += q;
-    if (!config_.film) regionSums_[size_t(mixture_.regionOf(fromX[i], fromY[i])) * k + c] += q;
-    const int px = int(std::floor(fromX[i])), py = int(std::floor(fromY[i]));
-    if (px >= 0 && py >= 0 && px < w && py < h) {
-      const size_t p = size_t(py) * size_t(w) + size_t(px);
-      stratCount_[p] += 1;
-      stratRadius_[p] += mixture_.radii()[c];
-      stratAccept_[p] += q;
+void PmcPopulation::runLane(size_t l, int steps) {
+  ChainLane& lane = *lanes_[l];
+  const size_t rows = lane.q.chains.size(), first = l * kPmcLaneSlots, k = size_t(components_);
+  // The lane's view of the kernel: member weights are rows of alpha_ from the lane's first slot.
+  PmcMixture kernel = mixture_;
+  if (mixture_.adapt() == PmcAdapt::Member) kernel.setMemberWeights(&alpha_[first * k]);
+  std::vector<StepRecord>& records = records_[l];
+  records.clear();
+  std::vector<float> fromX(rows), fromY(rows);
+  for (int t = 0; t < steps; ++t) {
+    // Where each member stands before the step (its proposal's y).
+    std::copy(lane.q.chains.filmX.begin(), lane.q.chains.filmX.begin() + ptrdiff_t(rows), fromX.begin());
+    std::copy(lane.q.chains.filmY.begin(), lane.q.chains.filmY.begin() + ptrdiff_t(rows), fromY.begin());
+    lane.step(tracing_.tracer, config_.step, &kernel, counters_, exact_.get());
+    const ProposalQueue& p = lane.q.proposals;
+    for (size_t row = 0; row < rows; ++row) {
+      if (!(energy_[first + row] > 0)) continue;
+      const float q = p.acceptance[row];
+      records.push_back(StepRecord{uint32_t(row), p.mutation[row], uint8_t(p.component[row]),
+                                   uint8_t(q > 0 && p.reason[row] != kRejectByChance), q, fromX[row], fromY[row],
+                                   lane.q.chains.energy[row]});
     }
+  }
+}
+
+void PmcPopulation::collect(size_t slot, const StepRecord& r) {
+  const size_t k = size_t(components_);
+  const int w = tracing_.film.width(), h = tracing_.film.height();
+  ++erptStatsOf(stats_).mutations;
+  ++erptStatsOf(stats_).deposits;
+  depositSum_ += r.energy;
+  ++depositSteps_;
+  if (r.kind == uint8_t(MutationKind::None)) return;
+  const size_t c = r.component;
+  ++pmc_.proposed[c][r.kind];
+  pmc_.accepted[c][r.kind] += r.accepted;
+  pmc_.acceptanceSum[c][r.kind] += r.acceptance;
+  if (mixture_.adapt() == PmcAdapt::Member) alphaSum_[slot * k + c] += r.acceptance;
+  if (!config_.film) regionSums_[size_t(mixture_.regionOf(r.fromX, r.fromY)) * k + c] += r.acceptance;
+  const int px = int(std::floor(r.fromX)), py = int(std::floor(r.fromY));
+  if (px >= 0 && py >= 0 && px < w && py < h) {
+    const size_t pixel = size_t(py) * size_t(w) + size_t(px);
+    stratCount_[pixel] += 1;
+    stratRadius_[pixel] += mixture_.radii()[c];
+    stratAccept_[pixel] += r.acceptance;
   }
 }
 
 void PmcPopulation::depositRemaining() {
   for (size_t i = 0; i < slots(); ++i) {
     if (!(energy_[i] > 0)) continue;
-    const Color d = q_.chains.colorAt(i) * float(energy_[i]);
-    config_.step.measure.film.splat(q_.chains.filmX[i], q_.chains.filmY[i],
+    const ChainQueue& chains = laneOf(i).q.chains;
+    const Color d = chains.colorAt(rowOf(i)) * float(energy_[i]);
+    config_.step.measure.film.splat(chains.filmX[rowOf(i)], chains.filmY[rowOf(i)],
                                     [&](uint32_t pixel, float wgt) { config_.film->add(pixel, d * wgt); });
     pmc_.energyFinal += luminance(d);
     deposited_ += luminance(d);

@@ -1,14 +1,16 @@
-// PMC-ER's population machine (docs/pmc-er.md): a fixed number of members in the chain SoA
-// queues, driven by the shared chain step a whole iteration at a time. One iteration:
+// PMC-ER's population machine (docs/pmc-er.md): a fixed number of members in chain lanes
+// (chain_lane.h) of kPmcLaneSlots slots each; an iteration runs every lane's N steps on one
+// thread each, all lanes depositing into one ExactFilm, so the image does not depend on the
+// thread count. One iteration:
 //   every member makes N mutations from its kernel (PmcMixture) and deposits a share r of
 //   its energy (r = --resample-rate) spread equally over them (equal deposition: at its
 //   current path; balance: detailed-balance deposits at y and the proposals);
 //   the next r * population positions of the stratified pool are traced by the wavefront path
 //   tracer (one batch) and become candidates;
 //   members and candidates are resampled by energy into the slots (systematic_resampling.h).
-// When the positions are used up the population drains for a few iterations without new
-// members (resampled into fewer slots each time, as its energy falls), then every member
-// deposits what it still holds where it stands. A render runs the population once per group
+// When the positions are used up (or the caller says to take no more: a time budget) the
+// population drains for a few iterations without new members (resampled into fewer slots each
+// time, as its energy falls), then every member deposits what it still holds where it stands. A render runs the population once per group
 // of sample passes (pmc_er_integrator.cpp), so that between groups no member is in flight
 // and the state is the film plus the accumulators kept here.
 #pragma once
@@ -17,6 +19,9 @@
 #include <functional>
 #include <vector>
 
+#include <memory>
+
+#include "integrators/chain_lane.h"
 #include "stages/chain_stages.h"
 #include "stages/pmc_mixture.h"
 #include "erpt/pmc_settings.h"
@@ -26,6 +31,11 @@
 #include "render_setup.h"
 
 namespace erpt {
+
+// Member slots per lane: fixed (not per thread), so that the order in which the lanes' step
+// records are collected, and with it every statistic, is the same for any thread count; 512
+// gives the default population of 5000 ten lanes, which two to eight threads share evenly.
+constexpr size_t kPmcLaneSlots = 512;
 
 class PmcPopulation {
  public:
@@ -42,13 +52,17 @@ class PmcPopulation {
   // `tracing`: the path tracer's setup (its stage context keys and stratifies pool samples).
   PmcPopulation(const RenderSetup& tracing, const Config& config, PmcMixture& mixture, RenderStats& stats);
 
-  // Runs over the positions of `rounds` until they are used up and the population drained,
-  // then deposits what the members still hold where they stand. maxIterations >= 0
+  // Runs over the positions of `rounds` until they are used up, or until the prefix `allowed`
+  // returns (asked after every iteration with the positions taken so far; it may grow but not
+  // shrink below what was taken) is taken, and the population drained, then deposits what the
+  // members still hold where they stand. maxIterations >= 0
   // (training): stops after that many iterations and deposits nothing at the end. Returns
   // false when `stop` was set before the end (the film and the accumulators then hold part of
   // the run: the caller loads the state it saved before it).
   bool run(const PoolRounds& rounds, int maxIterations = -1, const std::function<void(double)>& progress = {},
-           const std::atomic<bool>* stop = nullptr);
+           const std::atomic<bool>* stop = nullptr, const std::function<size_t(size_t)>& allowed = {});
+  // Positions of the last run's rounds it took (all of them unless `more` stopped it).
+  size_t positionsTaken() const { return poolCursor_; }
 
   // Render state between runs: statistics, tally and strategy sums (not the members: there
   // are none between runs).
@@ -67,14 +81,25 @@ class PmcPopulation {
   double depositedEnergy() const { return deposited_; }
 
  private:
-  size_t slots() const { return q_.chains.size(); }
+  // Member slot i is row i % kPmcLaneSlots of lane i / kPmcLaneSlots.
+  size_t slots() const { return slotCount_; }
+  ChainLane& laneOf(size_t slot) const { return *lanes_[slot / kPmcLaneSlots]; }
+  static size_t rowOf(size_t slot) { return slot % kPmcLaneSlots; }
+  // What collect() needs of one member's step, recorded by its lane's thread.
+  struct StepRecord {
+    uint32_t row;
+    uint8_t kind, component, accepted;
+    float acceptance, fromX, fromY, energy;
+  };
   void regenerate(const PoolRounds& rounds, size_t count);
   // `first`: the position (in the rounds) of the batch's path 0.
   void absorb(SeedStore& batch, const PoolRounds& rounds, size_t first);
   // Members and candidates by energy into the first `members` slots (the rest stay free).
   void resample(uint64_t iteration, size_t members);
   void iterate();
-  void collect(const std::vector<float>& fromX, const std::vector<float>& fromY);
+  // `steps` steps of every member of lane l, on the calling thread.
+  void runLane(size_t l, int steps);
+  void collect(size_t slot, const StepRecord& r);
   void depositRemaining();
 
   const RenderSetup& tracing_;
@@ -82,11 +107,17 @@ class PmcPopulation {
   PmcMixture& mixture_;
   RenderStats& stats_;
   PmcStats& pmc_;
-  StepQueues q_;
-  ChainQueue spareChains_;
-  VertexQueue spareVertices_;
+  size_t slotCount_;
+  std::vector<std::unique_ptr<ChainLane>> lanes_;
+  std::vector<ChainQueue> spareChains_;  // per lane: resampling writes the next members here
+  std::vector<VertexQueue> spareVertices_;
+  std::vector<std::vector<StepRecord>> records_;  // per lane, the current iteration's
+  // The chains' deposits of the current run: its unit follows the run's first deposit per step
+  // (exactFilmUnit); at the end of the run its sums move into the film.
+  std::unique_ptr<ExactFilm> exact_;
+  std::vector<LargeDeposit> large_;
   StepCounters counters_;
-  DepositFilters filters_;
+  DepositFilters filters_;  // the lanes' filter counts, merged
   size_t poolCursor_ = 0;      // positions of the current run's rounds traced so far
   uint64_t runSeed_ = 0;       // the current run's member streams and resampling comb
   uint64_t chainCounter_ = 0;  // member streams started in the current run

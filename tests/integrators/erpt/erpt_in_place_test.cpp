@@ -43,7 +43,7 @@ TEST(ErptInPlace, NoDepositionEnergyDepositsEverySeedWhereItIs) {
   EXPECT_EQ(erptStatsOf(stats).depositEnergy, 0.0);
   EXPECT_EQ(erptStatsOf(stats).chains, 0u);
   ASSERT_GT(erptStatsOf(stats).seeds, 100u);
-  EXPECT_EQ(erptStatsOf(stats).inPlace[kInPlaceNoDepositEnergy] + erptStatsOf(stats).inPlace[kInPlaceTooLong] +
+  EXPECT_EQ(erptStatsOf(stats).inPlace[kInPlaceNoDepositEnergy] +
                 erptStatsOf(stats).inPlace[kInPlaceZeroContribution] + erptStatsOf(stats).inPlace[kInPlaceNoMutation],
             erptStatsOf(stats).seeds);
   EXPECT_GT(erptStatsOf(stats).inPlace[kInPlaceNoDepositEnergy], erptStatsOf(stats).seeds * 9 / 10);
