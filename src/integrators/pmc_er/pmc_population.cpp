@@ -108,7 +108,10 @@ bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::
     const size_t cap = allowed ? std::min(rounds.size(), allowed(poolCursor_)) : rounds.size();
     taking = taking && poolCursor_ < cap;
     if (taking) {
-      regenerate(rounds, std::min(perIteration, cap - poolCursor_));
+      // An iteration never takes positions of two rounds, so that the population stands
+      // between rounds at every round's end (where a time budget may stop it), in every run.
+      const size_t roundEnd = (poolCursor_ / rounds.pool.pixels + 1) * size_t(rounds.pool.pixels);
+      regenerate(rounds, std::min({perIteration, cap - poolCursor_, roundEnd - poolCursor_}));
     } else if (drained++ >= drain) {
       break;
     } else {
@@ -402,6 +405,24 @@ void PmcPopulation::depositRemaining() {
     deposited_ += luminance(d);
     energy_[i] = 0;
   }
+}
+
+RgbImage PmcPopulation::snapshot(double samplesPerPixel) const {
+  Film film = *config_.film;
+  if (exact_) {
+    ExactFilm exact = *exact_;
+    exact.moveInto(film);
+  }
+  std::vector<LargeDeposit> large = large_;
+  addLargeDeposits(large, config_.step.measure.film, film);
+  for (size_t i = 0; i < slots(); ++i) {
+    if (!(energy_[i] > 0)) continue;
+    const ChainQueue& chains = laneOf(i).q.chains;
+    const Color d = chains.colorAt(rowOf(i)) * float(energy_[i]);
+    config_.step.measure.film.splat(chains.filmX[rowOf(i)], chains.filmY[rowOf(i)],
+                                    [&](uint32_t pixel, float w) { film.add(pixel, d * w); });
+  }
+  return film.resolve(samplesPerPixel);
 }
 
 RgbImage PmcPopulation::strategyImage() const {

@@ -61,8 +61,13 @@ class PmcPopulation {
   // the run: the caller loads the state it saved before it).
   bool run(const PoolRounds& rounds, int maxIterations = -1, const std::function<void(double)>& progress = {},
            const std::atomic<bool>* stop = nullptr, const std::function<size_t(size_t)>& allowed = {});
-  // Positions of the last run's rounds it took (all of them unless `more` stopped it).
+  // Positions of the last run's rounds it took (all of them unless `allowed` stopped it).
   size_t positionsTaken() const { return poolCursor_; }
+  // During a run (from `allowed`, between iterations): the image as if every member deposited
+  // what it holds where it stands now, over `samplesPerPixel`. At a round boundary it is an
+  // unbiased image of the rounds so far (the members' energy measure is a multiple of f);
+  // nothing of the run changes.
+  RgbImage snapshot(double samplesPerPixel) const;
 
   // Render state between runs: statistics, tally and strategy sums (not the members: there
   // are none between runs).
