@@ -103,15 +103,22 @@ bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::
   bool taking = true;
   for (uint64_t it = 1;; ++it) {
     if (stopRequested(stop)) return false;
-    iterate();
-    if (maxIterations >= 0 && it >= uint64_t(maxIterations)) break;
-    const size_t cap = allowed ? std::min(rounds.size(), allowed(poolCursor_)) : rounds.size();
-    taking = taking && poolCursor_ < cap;
-    if (taking) {
+    const bool last = maxIterations >= 0 && it >= uint64_t(maxIterations);
+    size_t take = 0;
+    if (!last) {
+      // Asked before the iteration, whose steps the next candidates' path tracing then runs
+      // beside (it does not depend on them).
+      const size_t cap = allowed ? std::min(rounds.size(), allowed(poolCursor_)) : rounds.size();
+      taking = taking && poolCursor_ < cap;
       // An iteration never takes positions of two rounds, so that the population stands
       // between rounds at every round's end (where a time budget may stop it), in every run.
       const size_t roundEnd = (poolCursor_ / rounds.pool.pixels + 1) * size_t(rounds.pool.pixels);
-      regenerate(rounds, std::min({perIteration, cap - poolCursor_, roundEnd - poolCursor_}));
+      if (taking) take = std::min({perIteration, cap - poolCursor_, roundEnd - poolCursor_});
+    }
+    iterate(take > 0 ? std::function<void()>([&] { regenerate(rounds, take); }) : std::function<void()>());
+    if (last) break;
+    if (take > 0) {
+      // The candidates are in; they join the members at the resampling below.
     } else if (drained++ >= drain) {
       break;
     } else {
@@ -306,7 +313,7 @@ void PmcPopulation::resample(uint64_t iteration, size_t members) {
   pmc_.resampleSeconds += secondsSince(start);
 }
 
-void PmcPopulation::iterate() {
+void PmcPopulation::iterate(const std::function<void()>& alongside) {
   const auto start = std::chrono::steady_clock::now();
   const size_t n = slots(), k = size_t(components_);
   const PmcSettings& s = config_.pmc;
@@ -326,8 +333,14 @@ void PmcPopulation::iterate() {
     chains.stepsLeft[rowOf(i)] = member ? uint32_t(steps) : 0;
     chains.energy[rowOf(i)] = member ? float(energy_[i] * s.resampleRate / steps) : 0.0f;
   }
-  forEachRange("pmc lanes", lanes_.size(), 1, [&](IndexRange r) {
-    for (size_t l = r.begin; l < r.end; ++l) runLane(l, steps);
+  // Task 0 is `alongside` (when given), the others the lanes: they share no data (the
+  // candidates' path tracing writes the film's in-place seeds and the candidates, the lanes
+  // their queues and the exact film).
+  const size_t extra = alongside ? 1 : 0;
+  forEachRange("pmc lanes", lanes_.size() + extra, 1, [&](IndexRange r) {
+    for (size_t t = r.begin; t < r.end; ++t)
+      if (t < extra) alongside();
+      else runLane(t - extra, steps);
   });
   // In lane order, so that the sums below are the same for any thread count.
   ChainLane::Totals totals;

@@ -101,7 +101,8 @@ class PmcPopulation {
   void absorb(SeedStore& batch, const PoolRounds& rounds, size_t first);
   // Members and candidates by energy into the first `members` slots (the rest stay free).
   void resample(uint64_t iteration, size_t members);
-  void iterate();
+  // `alongside` (when set) runs as one more task beside the lanes.
+  void iterate(const std::function<void()>& alongside = {});
   // `steps` steps of every member of lane l, on the calling thread.
   void runLane(size_t l, int steps);
   void collect(size_t slot, const StepRecord& r);
