@@ -27,9 +27,11 @@ constexpr int kAlphaBins = 10;  // alpha histogram bins over [0, 1]
 
 struct PmcSettings {
   PmcFlow flow = PmcFlow::EqualDeposition;
+  // Defaults chosen by measurement at equal time (docs/pmc-er.md, "Defaults by measurement");
+  // the paper's were 16 mutations per member and radii 5, 10, 50.
   int population = 5000;          // members (chain slots)
-  int mutationsPerMember = 16;    // N_equal / N_balance: steps of every member per iteration
-  std::vector<float> radii{5, 10, 50};  // mixture components d, in pixels
+  int mutationsPerMember = 4;     // N_equal / N_balance: steps of every member per iteration
+  std::vector<float> radii{2, 5, 10};  // mixture components d, in pixels
   PmcAdapt adapt = PmcAdapt::Region;
   double resampleRate = 0.4;      // share of the population regenerated from the pool per iteration
   float alphaFloor = 0.05f;       // eps: no mixture weight drops below it

@@ -27,8 +27,8 @@ TEST(PmcCli, RendersTheImageTheStrategyImageAndTheSummary) {
     double deposits = 0, maxRadius = 0;
     for (const Color& c : strategy.pixels) deposits += c.x, maxRadius = std::max(maxRadius, double(c.y));
     EXPECT_GT(deposits, 1000);
-    EXPECT_LE(maxRadius, 50.0 + 1e-3);  // mean radius chosen: within the mixture's radii
-    for (const char* s : {"iterations", "population 300", "pool 2048 of 2048 positions", "radius 5:", "radius 50:",
+    EXPECT_LE(maxRadius, 10.0 + 1e-3);  // mean radius chosen: within the mixture's radii (2, 5, 10)
+    for (const char* s : {"iterations", "population 300", "pool 2048 of 2048 positions", "radius 2:", "radius 10:",
                           "alpha histogram", "energy regenerated", "eliminated", "resampling", "regeneration"})
       EXPECT_NE(r.output.find(s), std::string::npos) << s << "\n" << r.output;
   }

@@ -67,8 +67,8 @@ TEST(StatisticalPmc, PlasticBoxMemberAdaptationBlockByBlock) {
   blockByBlock(plasticBox(), PmcFlow::EqualDeposition, PmcAdapt::Member, 5500, 16, 16);
 }
 
-// The Cornell box at 128x128 with its defaults (population 5000, 16 mutations per member,
-// radii 5/10/50, region adaptation): channel means within 1% of Tungsten's render, and the
+// The Cornell box at 128x128 with its defaults (population 5000, 4 mutations per member,
+// radii 2/5/10, region adaptation): channel means within 1% of Tungsten's render, and the
 // relative MSE against the 128x128 reference falling about 4x for 4x the pool (no floor).
 TEST(StatisticalPmc, CornellBoxMatchesReferences) {
   const Scene scene = test::cornellBox();
