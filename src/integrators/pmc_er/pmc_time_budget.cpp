@@ -32,12 +32,59 @@ constexpr uint32_t kOpenEndedRounds = 1u << 24;
 
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
+// The direct pass in chunks that keep its ratio --direct-samples / --spp to the rounds taken,
+// each chunk its own stream; the image is the chunks' mean weighted by their samples. A chunk
+// runs once the direct pass is behind by as many samples as it has done (so chunks double,
+// and each is stratified over its own samples per pixel), and at the end to catch up.
+class DirectChunks {
+ public:
+  DirectChunks(const Scene& scene, const RenderSettings& s) : scene_(scene), s_(s) {
+    const int samples = erptOf(s).directSamples;
+    perRound_ = samples > 0 ? double(samples) / double(s.spp) : 0.0;
+  }
+  void keepUpWith(double rounds, bool last, RenderStats& stats) {
+    if (!(perRound_ > 0)) return;
+    const int target = std::max(1, int(std::lround(perRound_ * rounds)));
+    if (target <= done_ || (!last && target < 2 * done_)) return;
+    RenderSettings chunk = s_;
+    chunk.seed = streamKey(s_.seed, kDirectChunkStream, uint64_t(chunks_++));
+    erptOf(chunk).directSamples = target - done_;
+    const Clock::time_point t = Clock::now();
+    const RgbImage img = renderDirectPass(scene_, chunk, stats);
+    seconds_ += secondsSince(t);
+    if (sum_.pixels.empty()) {
+      sum_.width = img.width, sum_.height = img.height;
+      sum_.pixels.assign(img.pixels.size(), Color(0.0f));
+    }
+    for (size_t i = 0; i < img.pixels.size(); ++i) sum_.pixels[i] += img.pixels[i] * float(target - done_);
+    done_ = target;
+  }
+  double seconds() const { return seconds_; }
+  // Seconds the direct pass still needs to keep up with `rounds` (at its pace so far).
+  double secondsToKeepUpWith(double rounds) const {
+    if (!(perRound_ > 0) || done_ == 0) return 0;
+    return std::max(0.0, perRound_ * rounds - double(done_)) * seconds_ / double(done_);
+  }
+  RgbImage image() const {
+    RgbImage mean = sum_;
+    for (Color& c : mean.pixels) c = c / float(done_);
+    return mean;
+  }
+
+ private:
+  const Scene& scene_;
+  const RenderSettings& s_;
+  double perRound_ = 0, seconds_ = 0;
+  int done_ = 0, chunks_ = 0;
+  RgbImage sum_;
+};
 // When the population may take more positions: to the end of the round in progress, and at a
 // round's end one more round while it and the drain fit in the budget.
 class RoundBudget {
  public:
-  RoundBudget(const RenderSettings& s, const PmcSettings& p, size_t pixels, Clock::time_point start)
-      : s_(s), pixels_(pixels), start_(start) {
+  RoundBudget(const RenderSettings& s, const PmcSettings& p, size_t pixels, Clock::time_point start,
+              const DirectChunks& direct)
+      : s_(s), pixels_(pixels), start_(start), direct_(direct) {
     // The drain's work in iterations of the whole population: sum of (1 - r)^d over its
     // iterations (the population shrinks by 1 - r each time).
     const int drain = p.resampleRate >= 1 || p.drainRemainder >= 1
@@ -52,13 +99,15 @@ class RoundBudget {
   size_t operator()(size_t taken) {
     const double elapsed = elapsedRendering();
     // The pace: seconds per position since the first call (which comes after the
-    // population's start), direct-pass chunks included.
-    if (firstTaken_ == 0) firstTaken_ = taken, firstElapsed_ = elapsed;
-    if (taken > firstTaken_) perPosition_ = (elapsed - firstElapsed_) / double(taken - firstTaken_);
+    // population's start), without the direct pass's chunks, which are counted apart.
+    const double population = elapsed - direct_.seconds();
+    if (firstTaken_ == 0) firstTaken_ = taken, firstElapsed_ = population;
+    if (taken > firstTaken_) perPosition_ = (population - firstElapsed_) / double(taken - firstTaken_);
     if (taken == 0 || taken % pixels_ != 0) return std::max(pixels_, (taken + pixels_ - 1) / pixels_ * pixels_);
     if (stopRequested(s_.stop)) return taken;  // interrupted: no further round
     // Without a pace yet (round 0 ended at the first call): one more round is taken.
-    const double next = (double(pixels_) + drainPositions_) * perPosition_;
+    const double next = (double(pixels_) + drainPositions_) * perPosition_ +
+                        direct_.secondsToKeepUpWith(double(taken + pixels_) / double(pixels_));
     return elapsed + next <= s_.timeBudget ? taken + pixels_ : taken;
   }
   double elapsedRendering() const { return secondsSince(start_) - notRendering; }
@@ -69,47 +118,12 @@ class RoundBudget {
   const RenderSettings& s_;
   size_t pixels_;
   Clock::time_point start_;
+  const DirectChunks& direct_;
   double drainPositions_ = 0;
   double perPosition_ = 0, firstElapsed_ = 0;
   size_t firstTaken_ = 0;
 };
 
-// The direct pass in chunks that keep its ratio --direct-samples / --spp to the rounds taken,
-// each chunk its own stream; the image is the chunks' mean weighted by their samples.
-class DirectChunks {
- public:
-  DirectChunks(const Scene& scene, const RenderSettings& s) : scene_(scene), s_(s) {
-    const int samples = erptOf(s).directSamples;
-    perRound_ = samples > 0 ? double(samples) / double(s.spp) : 0.0;
-  }
-  void keepUpWith(double rounds, RenderStats& stats) {
-    if (!(perRound_ > 0)) return;
-    const int target = std::max(1, int(std::lround(perRound_ * rounds)));
-    if (target <= done_) return;
-    RenderSettings chunk = s_;
-    chunk.seed = streamKey(s_.seed, kDirectChunkStream, uint64_t(chunks_++));
-    erptOf(chunk).directSamples = target - done_;
-    const RgbImage img = renderDirectPass(scene_, chunk, stats);
-    if (sum_.pixels.empty()) {
-      sum_.width = img.width, sum_.height = img.height;
-      sum_.pixels.assign(img.pixels.size(), Color(0.0f));
-    }
-    for (size_t i = 0; i < img.pixels.size(); ++i) sum_.pixels[i] += img.pixels[i] * float(target - done_);
-    done_ = target;
-  }
-  RgbImage image() const {
-    RgbImage mean = sum_;
-    for (Color& c : mean.pixels) c = c / float(done_);
-    return mean;
-  }
-
- private:
-  const Scene& scene_;
-  const RenderSettings& s_;
-  double perRound_ = 0;
-  int done_ = 0, chunks_ = 0;
-  RgbImage sum_;
-};
 }  // namespace
 
 RgbImage renderPmcForTime(const Scene& scene, const RenderSettings& s, const PmcTimeParts& parts, RenderStats& stats) {
@@ -119,8 +133,8 @@ RgbImage renderPmcForTime(const Scene& scene, const RenderSettings& s, const Pmc
                            PmcPopulation::Config{parts.ctx, chainSettingsOf(erptOf(s)), p, s.seed, &parts.setup.film},
                            parts.mixture, stats);
   const StratifiedPool pool{uint32_t(pixels), kOpenEndedRounds, streamKey(s.seed, kPoolStream, 0)};
-  RoundBudget budget(s, p, pixels, parts.start);
   DirectChunks direct(scene, s);
+  RoundBudget budget(s, p, pixels, parts.start, direct);
   auto progress = [&](double) {
     if (s.progress) s.progress(std::min(1.0, budget.elapsedRendering() / s.timeBudget));
   };
@@ -132,7 +146,7 @@ RgbImage renderPmcForTime(const Scene& scene, const RenderSettings& s, const Pmc
       // hold (unfiltered).
       reached = taken;
       const double rounds = double(taken) / double(pixels);
-      direct.keepUpWith(rounds, stats);
+      direct.keepUpWith(rounds, false, stats);
       if (s.onPass) {
         const Clock::time_point t = Clock::now();
         s.onPass(redistributionImage(s, population.snapshot(rounds), direct.image(), nullptr, nullptr),
@@ -146,7 +160,7 @@ RgbImage renderPmcForTime(const Scene& scene, const RenderSettings& s, const Pmc
   // progress (RoundBudget) and the population drains, so the image is always a complete one.
   population.run(PoolRounds::all(pool), -1, progress, nullptr, allowed);
   const double rounds = double(population.positionsTaken()) / double(pixels);
-  direct.keepUpWith(rounds, stats);
+  direct.keepUpWith(rounds, true, stats);
   stats.extraImages.emplace_back("strategy", population.strategyImage());
   const RgbImage image = redistributionImage(s, parts.setup.film.resolve(rounds), direct.image(),
                                              erptOf(s).pmFilterRadius >= 0 ? &population.proposalTally() : nullptr,
