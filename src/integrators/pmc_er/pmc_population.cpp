@@ -265,42 +265,58 @@ void PmcPopulation::resample(uint64_t iteration, size_t members) {
   const std::vector<uint32_t> counts = systematicCounts(weights, members, u);
   const double tau = total / double(members);
   std::vector<double> energy(n, 0.0), alphaSum(n * k, 0.0);
-  size_t slot = 0;
-  for (size_t i = 0; i < n; ++i) {
-    if (energy_[i] > 0 && counts[i] == 0) {
-      ++pmc_.eliminated;
-      pmc_.energyEliminated += energy_[i];
-    }
-    const ChainLane& from = laneOf(i);
-    const size_t row = rowOf(i);
-    for (uint32_t c = 0; c < counts[i]; ++c, ++slot) {
-      ChainQueue& to = spareChains_[slot / kPmcLaneSlots];
-      VertexQueue& toVertices = spareVertices_[slot / kPmcLaneSlots];
-      const size_t toRow = rowOf(slot);
-      to.copyRow(toRow, from.q.chains, row);
-      for (size_t j = 0; j < from.q.chains.vertexCount[row]; ++j)
-        toVertices.copyRow(toRow * kMaxChainVertices + j, from.q.chainVertices, row * kMaxChainVertices + j);
-      if (c > 0) {
-        // A copy moves on with its own random stream.
-        to.key[toRow] = streamKey(runSeed_, kMemberStream, chainCounter_++);
-        to.step[toRow] = 0;
-        ++pmc_.split;
+  // Where each item's copies go and the number of the first new random stream it takes, in
+  // the order of one pass over the members then the candidates (so the copying below may run
+  // in any order: each target slot is written once).
+  const size_t items = counts.size();
+  std::vector<size_t> firstSlot(items + 1, 0);
+  std::vector<uint64_t> firstStream(items, 0);
+  uint64_t streams = chainCounter_;
+  for (size_t i = 0; i < items; ++i) {
+    firstSlot[i + 1] = firstSlot[i] + counts[i];
+    firstStream[i] = streams;
+    // A member's first copy keeps its stream; its other copies and every copy of a candidate
+    // move on with streams of their own.
+    streams += i < n ? (counts[i] > 0 ? counts[i] - 1 : 0) : counts[i];
+    if (i < n) {
+      if (energy_[i] > 0 && counts[i] == 0) {
+        ++pmc_.eliminated;
+        pmc_.energyEliminated += energy_[i];
       }
-      for (size_t j = 0; j < k; ++j) alphaSum[slot * k + j] = alphaSum_[i * k + j];
-      energy[slot] = tau;
+      pmc_.split += counts[i] > 1 ? counts[i] - 1 : 0;
+    } else {
+      pmc_.energyRegenerated += candidateEnergy_[i - n];
+      pmc_.membersBorn += counts[i] > 0;
+      pmc_.split += counts[i] > 1 ? counts[i] - 1 : 0;
     }
   }
-  for (size_t j = 0; j < candidateEnergy_.size(); ++j) {
-    pmc_.energyRegenerated += candidateEnergy_[j];
-    const uint32_t copies = counts[n + j];
-    pmc_.membersBorn += copies > 0;
-    pmc_.split += copies > 1 ? copies - 1 : 0;
-    for (uint32_t c = 0; c < copies; ++c, ++slot) {
-      loadChainFromSeed(spareChains_[slot / kPmcLaneSlots], spareVertices_[slot / kPmcLaneSlots], rowOf(slot), candidates_,
-                        j, streamKey(runSeed_, kMemberStream, chainCounter_++), 0, 0);
-      energy[slot] = tau;  // new members start with uniform alpha (zero sums)
-    }
-  }
+  chainCounter_ = streams;
+  forEachRange("pmc resample", items, 64, [&](IndexRange r) {
+    for (size_t i = r.begin; i < r.end; ++i)
+      for (uint32_t c = 0; c < counts[i]; ++c) {
+        const size_t slot = firstSlot[i] + c;
+        ChainQueue& to = spareChains_[slot / kPmcLaneSlots];
+        VertexQueue& toVertices = spareVertices_[slot / kPmcLaneSlots];
+        const size_t toRow = rowOf(slot);
+        energy[slot] = tau;
+        if (i >= n) {  // a candidate: new members start with uniform alpha (zero sums)
+          loadChainFromSeed(to, toVertices, toRow, candidates_, i - n,
+                            streamKey(runSeed_, kMemberStream, firstStream[i] + c), 0, 0);
+          continue;
+        }
+        const ChainLane& from = laneOf(i);
+        const size_t row = rowOf(i);
+        to.copyRow(toRow, from.q.chains, row);
+        for (size_t j = 0; j < from.q.chains.vertexCount[row]; ++j)
+          toVertices.copyRow(toRow * kMaxChainVertices + j, from.q.chainVertices, row * kMaxChainVertices + j);
+        if (c > 0) {
+          to.key[toRow] = streamKey(runSeed_, kMemberStream, firstStream[i] + c - 1);
+          to.step[toRow] = 0;
+        }
+        for (size_t j = 0; j < k; ++j) alphaSum[slot * k + j] = alphaSum_[i * k + j];
+      }
+  }, &stats_.stages);
+  size_t slot = firstSlot[items];
   for (; slot < n; ++slot) spareChains_[slot / kPmcLaneSlots].stepsLeft[rowOf(slot)] = 0;  // only when nothing has energy
   for (size_t l = 0; l < lanes_.size(); ++l) {
     std::swap(lanes_[l]->q.chains, spareChains_[l]);
