@@ -21,11 +21,6 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 
 }  // namespace
 
-// The chains' film counts 2^-24 e_d (exactFilmUnit). Without e_d (the pilot found no energy)
-// only detailed balance runs chains.
-struct ChainLanes::Lane : ChainLane {
-  using ChainLane::ChainLane;
-};
 
 ChainLanes::ChainLanes(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times)
     : tracer_(tracer),
@@ -40,7 +35,7 @@ ChainLanes::ChainLanes(const Tracer& tracer, const Config& config, Film& film, E
     filters_.proposalTally = &tally_;
   }
   for (int l = 0; l < std::max(1, config.lanes); ++l) {
-    lanes_.push_back(std::make_unique<Lane>(config.laneSlots));
+    lanes_.push_back(std::make_unique<ChainLane>(config.laneSlots));
     lanes_.back()->filters.maxConsecutive = filters_.maxConsecutive;
     lanes_.back()->filters.proposalTally = filters_.proposalTally;
   }
@@ -142,7 +137,7 @@ bool ChainLanes::runLanes(bool drain) {
   return !stop;
 }
 
-bool ChainLanes::runLane(Lane& lane, bool drain) {
+bool ChainLanes::runLane(ChainLane& lane, bool drain) {
   for (;;) {
     const bool waiting = refill(lane);
     if (drain) {
@@ -191,7 +186,7 @@ RgbImage ChainLanes::image(double samplesPerPixel) const {
   return img;
 }
 
-bool ChainLanes::refill(Lane& lane) {
+bool ChainLanes::refill(ChainLane& lane) {
   auto start = std::chrono::steady_clock::now();
   ChainQueue& q = lane.q.chains;
   size_t free = 0;
@@ -230,7 +225,7 @@ void ChainLanes::depositInPlace(const SeedStore& store, size_t seed, double ener
   inPlaceDeposited_ += added;
 }
 
-void ChainLanes::step(Lane& lane) { lane.step(tracer_, config_.step, config_.policy, counters_, &exact_); }
+void ChainLanes::step(ChainLane& lane) { lane.step(tracer_, config_.step, config_.policy, counters_, &exact_); }
 
 void ChainLanes::mergeLanes() {
   ChainLane::Totals totals;

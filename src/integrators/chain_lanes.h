@@ -88,7 +88,6 @@ class ChainLanes {
   const std::vector<uint32_t>& proposalTally() const { return tally_; }
 
  private:
-  struct Lane;
   const ChainSettings& settings() const { return config_.chains; }
   // Runs every lane on the pool's threads: until the batch's chains are all in a queue
   // (drain = false) or until no chain is left (drain = true). False: stopped.
@@ -96,11 +95,11 @@ class ChainLanes {
   // Numbers the `chains` of pending_ (batch_ set) after those of earlier batches, runs the
   // lanes until all are in a queue, and lets go of the batch.
   bool runBatch(size_t chains);
-  bool runLane(Lane& lane, bool drain);
+  bool runLane(ChainLane& lane, bool drain);
   // Loads the batch's next chains into the lane's free slots; true while chains of the batch
   // are still waiting for a slot afterwards.
-  bool refill(Lane& lane);
-  void step(Lane& lane);
+  bool refill(ChainLane& lane);
+  void step(ChainLane& lane);
   // Lane totals (rays, energy, filter counts, stage times, large deposits) into the machine's.
   void mergeLanes();
   // Deposits `energy` (luminance) in the seed's colour at its film position, counted by `why`.
@@ -113,7 +112,7 @@ class ChainLanes {
   ErptStats& stats_;
   StageTimes& times_;
   ExactFilm exact_;
-  std::vector<std::unique_ptr<Lane>> lanes_;
+  std::vector<std::unique_ptr<ChainLane>> lanes_;
   StepCounters counters_;
   // Chains of the current batch: pending_[p] starts chains firstChain.. +copies of the batch,
   // whose numbers in the render start at chainBase_; lanes take them through nextChain_.

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "core/parallel.h"
 #include "stages/chain_step.h"
@@ -117,11 +118,8 @@ bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::
     }
     iterate(take > 0 ? std::function<void()>([&] { regenerate(rounds, take); }) : std::function<void()>());
     if (last) break;
-    if (take > 0) {
-      // The candidates are in; they join the members at the resampling below.
-    } else if (drained++ >= drain) {
-      break;
-    } else {
+    if (take == 0) {
+      if (drained++ >= drain) break;
       // Draining: no new members, so the population shrinks with its energy (each member
       // keeps about the energy it had, and the work per iteration falls by 1 - r).
       ++pmc_.drainIterations;
@@ -378,9 +376,14 @@ void PmcPopulation::iterate(const std::function<void()>& alongside) {
 void PmcPopulation::runLane(size_t l, int steps) {
   ChainLane& lane = *lanes_[l];
   const size_t rows = lane.q.chains.size(), first = l * kPmcLaneSlots, k = size_t(components_);
-  // The lane's view of the kernel: member weights are rows of alpha_ from the lane's first slot.
-  PmcMixture kernel = mixture_;
-  if (mixture_.adapt() == PmcAdapt::Member) kernel.setMemberWeights(&alpha_[first * k]);
+  // The lane's view of the kernel: member weights are rows of alpha_ from the lane's first
+  // slot (a copy of the mixture pointing there); the other modes share the mixture.
+  std::optional<PmcMixture> memberKernel;
+  if (mixture_.adapt() == PmcAdapt::Member) {
+    memberKernel.emplace(mixture_);
+    memberKernel->setMemberWeights(&alpha_[first * k]);
+  }
+  const ProposalPolicy* kernel = memberKernel ? &*memberKernel : &mixture_;
   std::vector<StepRecord>& records = records_[l];
   records.clear();
   std::vector<float> fromX(rows), fromY(rows);
@@ -388,7 +391,7 @@ void PmcPopulation::runLane(size_t l, int steps) {
     // Where each member stands before the step (its proposal's y).
     std::copy(lane.q.chains.filmX.begin(), lane.q.chains.filmX.begin() + ptrdiff_t(rows), fromX.begin());
     std::copy(lane.q.chains.filmY.begin(), lane.q.chains.filmY.begin() + ptrdiff_t(rows), fromY.begin());
-    lane.step(tracing_.tracer, config_.step, &kernel, counters_, exact_.get());
+    lane.step(tracing_.tracer, config_.step, kernel, counters_, exact_.get());
     const ProposalQueue& p = lane.q.proposals;
     for (size_t row = 0; row < rows; ++row) {
       if (!(energy_[first + row] > 0)) continue;
