@@ -70,4 +70,22 @@ RayQueue makeRays(const Scene& scene, RaySet kind, size_t n, uint64_t seed) {
   return q;
 }
 
+void benchmarkWholeRender(benchmark::State& state, const Scene& scene, const RenderSettings& settings,
+                          const char* samplesName) {
+  double rays = 0, samples = 0, seconds = 0;
+  RenderStats stats;
+  for (auto _ : state) {
+    stats = RenderStats{};
+    benchmark::DoNotOptimize(render(scene, settings, stats));
+    rays += double(stats.rays);
+    samples += double(stats.samples);
+    seconds += stats.seconds;
+  }
+  state.counters["rays/s"] = rays / seconds;
+  state.counters[samplesName] = samples / seconds;
+  double total = 0;
+  for (const auto& [name, t] : stats.stages.all()) total += t;
+  for (const auto& [name, t] : stats.stages.all()) state.counters["share_" + name] = t / total;
+}
+
 }  // namespace erpt::bench

@@ -159,20 +159,7 @@ void BM_PathTracer(benchmark::State& state) {
   s.width = s.height = 256;
   s.spp = 16;
   s.threads = int(state.range(0));
-  double rays = 0, samples = 0, seconds = 0;
-  RenderStats stats;
-  for (auto _ : state) {
-    stats = RenderStats{};
-    benchmark::DoNotOptimize(render(scene, s, stats));
-    rays += double(stats.rays);
-    samples += double(stats.samples);
-    seconds += stats.seconds;
-  }
-  state.counters["rays/s"] = rays / seconds;
-  state.counters["paths/s"] = samples / seconds;
-  double total = 0;
-  for (const auto& [name, t] : stats.stages.all()) total += t;
-  for (const auto& [name, t] : stats.stages.all()) state.counters["share_" + name] = t / total;
+  benchmarkWholeRender(state, scene, s);
 }
 
 #define THREADS ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()

@@ -22,13 +22,13 @@ if [ "${1:-}" != "--release-only" ]; then
   # Leaks are checked too; tests/lsan.supp lists the third-party ones we cannot fix. This
   # build is clang's, and its Fuzz.* tests are 20 s libFuzzer runs of each fuzz target
   # (scripts/fuzz.sh runs them for longer). The long statistical renders of the path tracer
-  # (against the references and the scalar tracer), ERPT, PMC-ER, MLT, the splatting films and
-  # exact-vs-tessellated spheres run in the Release suite only (their code paths are covered by
+  # (against the references and the scalar tracer), ERPT, PMC-ER, MLT, BDPT (and the others with
+  # its seeds), the splatting films and exact-vs-tessellated spheres run in the Release suite only (their code paths are covered by
   # the stage, measure, determinism, closed-form and CLI tests here), and so does the table of
   # every integrator x option (200 CLI renders; the option code it checks is plain parsing).
   step "sanitizer tests" bash -c 'cd build-sanitize && ASAN_OPTIONS=detect_leaks=1 \
     LSAN_OPTIONS=suppressions="$PWD/../tests/lsan.supp" ctest --output-on-failure -j2 \
-    -E "^Statistical(Erpt|Pmc|Mlt|Film|Resume|Path|PathVsScalar)\.|^StatisticalExactSphere\.ExactAndTessellated|^Cli/OptionsTable\."'
+    -E "^Statistical(Erpt|Pmc|Mlt|Film|Resume|Path|PathVsScalar|Bdpt|BdptSeeds)\.|^StatisticalExactSphere\.ExactAndTessellated|^Cli/OptionsTable\."'
   # ThreadSanitizer on the multi-threaded code: the stage kernels and every test that renders
   # one scene on 1 and 2 threads (path, direct, seed store, splat film, erpt, pmc-er, mlt, split
   # renders). In this build the parallel loops run on std::threads (src/core/parallel.cpp).

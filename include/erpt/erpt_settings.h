@@ -25,6 +25,10 @@ enum class LensShape { Square, Disk };
 // [0, theta_max] with theta_max from PMC-ER eq. 6 for an image move of lensRadius pixels.
 enum class CausticAngle { Erpt, Veach };
 
+// Where the chains' seeds (and the pilot, the direct pass, MLT's bootstrap) come from:
+// the path tracer, or bidirectional path tracing (docs/bdpt.md, "Seeds").
+enum class SeedSampler { Path, Bdpt };
+
 struct ErptSettings {
   int mutationsPerPixel = 100;  // M: sets e_d = n e_ave / M
   int chainLength = 100;        // m: steps of every chain
@@ -35,6 +39,7 @@ struct ErptSettings {
   int pilotSpp = 4;             // samples per pixel of the pilot pass estimating e_ave
   bool expectedDeposit = false; // deposit (1 - q) at y and q at z instead of the paper's rule
   int directSamples = 64;       // >= 1: one-bounce paths by a direct-lighting pass (N spp); -1: ERPT does all
+  SeedSampler seeds = SeedSampler::Path;  // --seeds
   FlowRule flow = FlowRule::EqualDeposition;
   // Noise filters of section 4.4 (biased; off by default).
   int pmFilterRadius = -1;      // >= 0: proposed-mutations filter, box of (2r+1)^2 pixels; -1: off

@@ -81,10 +81,46 @@
   F(uint32_t, path, {}, "index of the path (sample) that made it within its path-tracer run")       \
   F(float, filmX, {}, "film position x in pixels")                                                  \
   F(float, filmY, {}, "film position y in pixels")                                                  \
-  F(uint8_t, explicitLight, {}, "1: reached the light by next-event estimation; 0: a BSDF sample hit it") \
+  F(uint8_t, explicitLight, {}, "the technique: 0 a BSDF sample hit the light, 1 next-event estimation; BDPT's seeds: the strategy's light vertices s") \
   F(float, misWeight, {}, "MIS weight of this technique for this path")                             \
   C(estimate, "unweighted estimate f / p of the path")                                              \
   F(float, pLength, {}, "product of Russian-roulette survival probabilities (p_length)")            \
   F(float, pLight, {}, "explicit: area density of the light point (p_light * p_area); implicit: what NEE would have used") \
   F(uint32_t, vertexBegin, {}, "first vertex in the seed store's vertex queue")                     \
   F(uint32_t, vertexCount, {}, "vertices, eye and light included")
+
+// A vertex of one of BDPT's subpaths (light or camera), in the order the walk made them: the
+// path vertex, how much of the path's contribution over its density it carries, and the two
+// densities that the MIS weights of every connection through it need (kernels/bdpt_mis.h).
+#define ERPT_BDPT_VERTEX_FIELDS(F, V, C)                                                            \
+  ERPT_PATH_VERTEX_FIELDS(F, V, C)                                                                  \
+  C(beta, "contribution over density of the subpath up to here (bdpt_walk.cpp says what a light vertex's includes)") \
+  F(float, pdfForward, {}, "area density of this vertex as its own subpath sampled it (solid angle at infinity)") \
+  F(float, pdfReverse, {}, "area density of this vertex sampled from the other side (from the next vertex of its subpath)") \
+  F(uint32_t, primitive, {}, "primitive id of a surface or area-light vertex")                       \
+  F(int32_t, parent, -1, "previous vertex of the same subpath, -1 at its start")
+
+// A subpath in flight in BDPT's walks (its ray is slot k of the walk's ray queue).
+#define ERPT_BDPT_WALK_FIELDS(F, V, C)                                                              \
+  F(uint32_t, sample, {}, "the sample (index within the task's chunk) the subpath belongs to")      \
+  C(beta, "beta of the vertex the ray will hit, before that vertex's own factors")                   \
+  C(scatter, "product of the bounce weights so far (Russian roulette reads it)")                     \
+  F(float, etaSquared, {}, "product of the squared relative IORs crossed (Russian roulette's boost)") \
+  F(float, pdfNext, {}, "density of the direction just sampled: solid angle, or per unit area across an infinite light's beam") \
+  F(int32_t, vertex, {}, "the subpath's newest vertex")                                             \
+  F(uint32_t, depth, {}, "segments traced so far")
+
+// One contribution of BDPT (a strategy (s, t) of one sample): its shadow ray is slot k of the
+// connection stage's ray queue (disabled for s = 0, which needs none); if unoccluded, `value`
+// goes to the sample's radiance or, for light tracing (t = 1), to the film at (filmX, filmY).
+#define ERPT_BDPT_CONNECTION_FIELDS(F, V, C)                                                        \
+  F(uint32_t, sample, {}, "the sample (index within the task's chunk)")                             \
+  C(value, "MIS-weighted contribution")                                                            \
+  F(float, misWeight, {}, "its MIS weight")                                                         \
+  F(uint16_t, s, {}, "light vertices of the strategy")                                              \
+  F(uint16_t, t, {}, "camera vertices of the strategy")                                             \
+  F(int32_t, cameraVertex, {}, "the camera end: a subpath vertex (>= 0) or extra vertex -1 - v (a lens point)") \
+  F(int32_t, lightVertex, {}, "the light end: a subpath vertex (>= 0), extra vertex -1 - v (a next-event light point) or none (s = 0)") \
+  F(uint8_t, toCamera, {}, "1: light tracing (t = 1), splatted at (filmX, filmY)")                  \
+  F(float, filmX, {}, "light tracing: the film position, x in pixels")                              \
+  F(float, filmY, {}, "light tracing: the film position, y in pixels")

@@ -21,6 +21,20 @@ struct SeedStore {
     seeds.resize(0);
     vertices.resize(0);
   }
+  // Appends every seed of `from` with its vertices (one resize of each queue).
+  void appendAll(const SeedStore& from) {
+    const size_t seedBase = seeds.size(), vertexBase = vertices.size();
+    seeds.resize(seedBase + from.seeds.size());
+    vertices.resize(vertexBase + from.vertices.size());
+    for (size_t i = 0; i < from.vertices.size(); ++i) {
+      vertices.copyRow(vertexBase + i, from.vertices, i);
+      if (vertices.parent[vertexBase + i] >= 0) vertices.parent[vertexBase + i] += int32_t(vertexBase);
+    }
+    for (size_t i = 0; i < from.seeds.size(); ++i) {
+      seeds.copyRow(seedBase + i, from.seeds, i);
+      seeds.vertexBegin[seedBase + i] += uint32_t(vertexBase);
+    }
+  }
   // Appends `copies` rows of seed i of `from`, sharing one copy of its vertices.
   void append(const SeedStore& from, size_t i, size_t copies = 1) {
     const size_t begin = vertices.size(), n = from.seeds.vertexCount[i];

@@ -40,6 +40,14 @@ OptionSpec directSamplesOption() {
                        -1, 65536, [](auto& s) -> auto& { return erptOf(s).directSamples; });
 }
 
+OptionSpec seedsOption() {
+  return choiceOption<SeedSampler>(
+      "seeds",
+      "the seed sampler, also of the pilot and the direct pass: path (the path tracer) or bdpt (bidirectional path "
+      "tracing, whose light tracing finds caustics of small lights)",
+      {{"path", SeedSampler::Path}, {"bdpt", SeedSampler::Bdpt}}, [](auto& s) -> auto& { return erptOf(s).seeds; });
+}
+
 std::vector<OptionSpec> depositOptions() {
   OptionSpec pmFilter("pm-filter",
                       "proposed-mutations noise filter (ERPT paper 4.4; biased) of radius 3 unless "

@@ -1,6 +1,7 @@
 // The parts ERPT, PMC-ER and MLT share around their chains (redistribution_parts.h).
 #include "integrators/redistribution_parts.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/rng.h"
@@ -8,6 +9,7 @@
 #include "integrators/direct/direct_integrator.h"
 #include "integrators/noise_filters.h"
 #include "integrators/sample_passes.h"
+#include "integrators/seed_sampler.h"
 
 namespace erpt {
 
@@ -26,7 +28,14 @@ RgbImage renderDirectPass(const Scene& scene, const RenderSettings& s, RenderSta
   // Its own random stream: the main pass's keys would correlate the two estimates.
   direct.seed = streamKey(s.seed, kDirectStream, 0);
   RenderStats directStats;
-  RgbImage d = renderDirect(scene, direct, directStats);
+  RgbImage d;
+  if (erptOf(s).seeds == SeedSampler::Bdpt) {
+    // BDPT's paths of at most two segments: what the chains leave out (seedForChains).
+    direct.maxDepth = s.maxDepth < 0 ? 2 : std::min(2, s.maxDepth);
+    d = renderWithSeedSampler(scene, direct, directStats);
+  } else {
+    d = renderDirect(scene, direct, directStats);
+  }
   stats.rays += directStats.rays;
   for (const auto& [name, seconds] : directStats.stages.all()) stats.stages.add("direct " + name, seconds);
   return d;

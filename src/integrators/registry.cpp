@@ -1,6 +1,7 @@
 // The only place that maps an integrator's name to its module (include/erpt/integrators.h).
 #include "erpt/integrators.h"
 
+#include "integrators/bdpt/bdpt_integrator.h"
 #include "integrators/direct/direct_integrator.h"
 #include "erpt/error.h"
 #include "integrators/erpt/erpt_integrator.h"
@@ -12,7 +13,7 @@ namespace erpt {
 
 const std::vector<IntegratorModule>& integratorModules() {
   static const std::vector<IntegratorModule> modules = {pathModule(), directModule(), erptModule(), pmcErModule(),
-                                                        mltModule()};
+                                                        mltModule(), bdptModule()};
   return modules;
 }
 

@@ -61,6 +61,24 @@ inline RenderSettings subRenderSettings(const RenderSettings& s) {
 // Split renders: each counter becomes its total over the ranks (exact below 2^53).
 void sumCounters(const RenderShare& share, std::initializer_list<uint64_t*> counters);
 
+// save, load and reduce for a render whose whole state is a film (Film or SplatFilm: save,
+// load, reduce) and the common counters: the path tracer, `direct`, BDPT.
+template <class FilmT>
+void setFilmStateHooks(SamplePassHooks& passes, FilmT& film, RenderStats& stats) {
+  passes.save = [&film, &stats](ByteWriter& w) {
+    film.save(w);
+    w.put(stats.samples), w.put(stats.rays), w.put(stats.invalidSamples);
+  };
+  passes.load = [&film, &stats](ByteReader& r) {
+    film.load(r);
+    r.get(stats.samples), r.get(stats.rays), r.get(stats.invalidSamples);
+  };
+  passes.reduce = [&film, &stats](const RenderShare& share) {
+    film.reduce(share.sumAcrossRanks);
+    sumCounters(share, {&stats.samples, &stats.rays, &stats.invalidSamples});
+  };
+}
+
 inline bool stopRequested(const std::atomic<bool>* stop) { return stop && stop->load(std::memory_order_relaxed); }
 
 }  // namespace erpt

@@ -65,6 +65,13 @@ void aimAtFocus(Vec3 pinhole, Vec3 forward, float focusDistance, float nearClip,
 }
 }  // namespace
 
+Vec3 Camera::lensPoint(float u1, float u2) const {
+  if (!hasLens()) return origin_;
+  float x, y;
+  squareToDisk(u1, u2, x, y);
+  return origin_ + right_ * (x * apertureRadius_) + up_ * (y * apertureRadius_);
+}
+
 void Camera::throughLens(float u1, float u2, Vec3& origin, Vec3& direction, float& tnear, float& tfar) const {
   float x, y;
   squareToDisk(u1, u2, x, y);

@@ -27,6 +27,10 @@ class Camera {
   // plane of focus, so everything on that plane stays sharp. Clip distances follow the new
   // direction.
   bool hasLens() const { return apertureRadius_ > 0; }
+  // A point on the lens for (u1, u2), uniform on its disk (the pinhole without a lens): where
+  // light tracing connects to the camera.
+  Vec3 lensPoint(float u1, float u2) const;
+  Vec3 forward() const { return forward_; }
   void throughLens(float u1, float u2, Vec3& origin, Vec3& direction, float& tnear, float& tfar) const;
   // The ray from a given lens point through film position (filmX, filmY): the pinhole ray
   // without a lens. ERPT's chains keep their path's lens point (vertex 0) and move the film

@@ -67,6 +67,22 @@ SplatFilm::SplatFilm(const PixelFilter& filter, int width, int height)
   insideY_ = inside(height);
 }
 
+template <class Add>
+void SplatFilm::splatOne(float x, float y, Add&& add) const {
+  const float radius = filter_.radius();
+  int px0, px1, py0, py1;
+  reach(x, radius, width_, px0, px1);
+  reach(y, radius, height_, py0, py1);
+  float wx[kMaxReach], wy[kMaxReach];
+  for (int p = px0; p <= px1; ++p) wx[p - px0] = filter_.eval(x - (float(p) + 0.5f)) * norm_;
+  for (int p = py0; p <= py1; ++p) wy[p - py0] = filter_.eval(y - (float(p) + 0.5f)) * norm_;
+  for (int py = py0; py <= py1; ++py)
+    for (int px = px0; px <= px1; ++px) {
+      const double w = double(wx[px - px0]) * wy[py - py0];
+      if (w > 0) add(px, py, w);
+    }
+}
+
 void SplatFilm::addSamples(const float* x, const float* y, const float* r, const float* g, const float* b, size_t n) {
   const size_t chunks = (n + kChunk - 1) / kChunk;
   std::vector<Buffer> buffers(chunks);
@@ -88,19 +104,10 @@ void SplatFilm::addSamples(const float* x, const float* y, const float* r, const
       buf.v.assign(size_t(buf.w) * size_t(buf.h) * 4, 0.0);
       for (size_t i = begin; i < end; ++i) {
         if (!std::isfinite(r[i]) || !std::isfinite(g[i]) || !std::isfinite(b[i])) continue;
-        int px0, px1, py0, py1;
-        reach(x[i], radius, width_, px0, px1);
-        reach(y[i], radius, height_, py0, py1);
-        float wx[kMaxReach], wy[kMaxReach];
-        for (int p = px0; p <= px1; ++p) wx[p - px0] = filter_.eval(x[i] - (float(p) + 0.5f)) * norm_;
-        for (int p = py0; p <= py1; ++p) wy[p - py0] = filter_.eval(y[i] - (float(p) + 0.5f)) * norm_;
-        for (int py = py0; py <= py1; ++py)
-          for (int px = px0; px <= px1; ++px) {
-            const double w = double(wx[px - px0]) * wy[py - py0];
-            if (!(w > 0)) continue;
-            double* v = &buf.v[(size_t(py - buf.y0) * size_t(buf.w) + size_t(px - buf.x0)) * 4];
-            v[0] += w * r[i], v[1] += w * g[i], v[2] += w * b[i], v[3] += w;
-          }
+        splatOne(x[i], y[i], [&](int px, int py, double w) {
+          double* v = &buf.v[(size_t(py - buf.y0) * size_t(buf.w) + size_t(px - buf.x0)) * 4];
+          v[0] += w * r[i], v[1] += w * g[i], v[2] += w * b[i], v[3] += w;
+        });
       }
     }
   });
@@ -112,6 +119,17 @@ void SplatFilm::addSamples(const float* x, const float* y, const float* r, const
         sum_[3 * p] += v[0], sum_[3 * p + 1] += v[1], sum_[3 * p + 2] += v[2];
         weight_[p] += v[3];
       }
+  }
+}
+
+void SplatFilm::addScattered(const float* x, const float* y, const float* r, const float* g, const float* b, size_t n) {
+  for (size_t i = 0; i < n; ++i) {
+    if (!std::isfinite(r[i]) || !std::isfinite(g[i]) || !std::isfinite(b[i])) continue;
+    splatOne(x[i], y[i], [&](int px, int py, double w) {
+      const size_t p = size_t(py) * size_t(width_) + size_t(px);
+      sum_[3 * p] += w * r[i], sum_[3 * p + 1] += w * g[i], sum_[3 * p + 2] += w * b[i];
+      weight_[p] += w;
+    });
   }
 }
 

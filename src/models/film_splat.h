@@ -31,6 +31,9 @@ class SplatFilm {
   // Adds samples [0, n): film positions and radiance columns. Non-finite radiance is dropped
   // (the path tracer counts it).
   void addSamples(const float* x, const float* y, const float* r, const float* g, const float* b, size_t n);
+  // The same for samples scattered over the image (BDPT's light tracing), added one by one on
+  // the calling thread: addSamples' per-chunk buffers would each span the whole image.
+  void addScattered(const float* x, const float* y, const float* r, const float* g, const float* b, size_t n);
   RgbImage resolve(FilmMode mode, double samplesPerPixel) const;
   void save(ByteWriter& w) const {
     w.putVector(sum_);
@@ -47,6 +50,9 @@ class SplatFilm {
   }
 
  private:
+  // Calls add(px, py, w) for every pixel the sample at (x, y) reaches, w its normalized filter weight.
+  template <class Add>
+  void splatOne(float x, float y, Add&& add) const;
   const PixelFilter& filter_;
   int width_, height_;
   float norm_;                     // 1 / integral of the 1D filter

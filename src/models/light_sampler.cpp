@@ -156,6 +156,7 @@ bool LightSampler::finishAreaSample(uint32_t primitive, float pdfArea, Vec3 ref,
   float cosL = -dot(n, out.direction);
   if (cosL <= 0) return false;  // one-sided emission: we see its back
   out.emitter = scene_.emitterOf(primitive);
+  out.primitive = primitive;
   out.radiance = scene_.emitters[out.emitter].radiance;
   out.pdfLight = pdfArea;
   out.pdf = pdfArea * dist2 / cosL;
@@ -204,17 +205,23 @@ bool LightSampler::sampleSphere(const Item& item, float prob, Vec3 ref, float u1
   const float cosL = -dot(radial, out.direction);
   if (!(cosL > 0) || !(dist2 > 0)) return false;  // grazing the silhouette
   out.emitter = s.emitter[i];
+  out.primitive = item.index;
   out.radiance = scene_.emitters[out.emitter].radiance;
   out.pdf = prob / (2 * kPi * cone);
   out.pdfLight = out.pdf * cosL / dist2;
   return true;
 }
 
+const LightSampler::Item& LightSampler::pick(double uPick, float& probability) const {
+  const size_t i = std::min(size_t(std::upper_bound(cdf_.begin(), cdf_.end(), uPick) - cdf_.begin()), cdf_.size() - 1);
+  probability = cdf_[i] - (i > 0 ? cdf_[i - 1] : 0.0f);
+  return items_[i];
+}
+
 bool LightSampler::sample(Vec3 ref, double uPick, float u1, float u2, LightSample& out) const {
   if (cdf_.empty()) return false;
-  size_t i = std::min(size_t(std::upper_bound(cdf_.begin(), cdf_.end(), uPick) - cdf_.begin()), cdf_.size() - 1);
-  const Item& item = items_[i];
-  float prob = cdf_[i] - (i > 0 ? cdf_[i - 1] : 0.0f);
+  float prob;
+  const Item& item = pick(uPick, prob);
   out = LightSample{};
   if (item.kind == Kind::Triangle) return sampleTriangle(item, prob, ref, u1, u2, out);
   if (item.kind == Kind::Sphere) return sampleSphere(item, prob, ref, u1, u2, out);

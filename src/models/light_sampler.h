@@ -28,6 +28,27 @@ struct LightSample {
   bool delta;        // point light: cannot be hit by BSDF sampling
   bool environment;
   int emitter = -1;  // index into Scene::emitters
+  uint32_t primitive = 0;  // area lights: the primitive the point lies on
+};
+
+// A light point and a direction it sends light in, for light tracing (BDPT's light subpaths;
+// light_emission.cpp). Infinite lights (environment, directional) start their rays on a disk
+// of the scene's bounding radius facing the direction, outside the scene.
+struct EmissionSample {
+  Vec3 origin;     // the light point, or the point on the disk (infinite lights)
+  Vec3 normal;     // area lights: the emitting side's normal; infinite lights: the direction
+  Vec3 direction;  // unit: where the light travels
+  Color value;     // radiance (area, environment), intensity with the spot falloff (point),
+                   // irradiance (directional), sent along `direction`
+  float pdfPosition = 0;   // density of the light vertex, pick probability included: per unit
+                           // area (area lights), the pick probability (point, directional: a
+                           // Dirac), the direction's solid-angle pdf (environment)
+  float pdfDirection = 0;  // density of the first hit: per solid angle from the point (area,
+                           // point), per unit area across the beam (infinite lights)
+  float cosAtLight = 1;    // |cos| to the area light's normal (1 for the others)
+  bool infinite = false, deltaPosition = false, deltaDirection = false;
+  int emitter = -1;
+  uint32_t primitive = 0;  // area lights
 };
 
 class LightSampler {
@@ -53,6 +74,17 @@ class LightSampler {
   Color emitted(const SurfacePoint& sp, Vec3 w) const;
   const Scene& scene() const { return scene_; }
 
+  // Emission sampling (light_emission.cpp): a light by power (the same choice as sample()),
+  // a point on it and a direction, with their densities. False when it carries nothing.
+  bool sampleEmission(double uPick, float u1, float u2, float u3, float u4, EmissionSample& out) const;
+  // sampleEmission's densities (pdfPosition, pdfDirection) of emitting from a light vertex in
+  // `direction` (unit, where the light travels): an area light's point of `primitive` with
+  // emitting normal `normal`, or the point, directional or environment light `emitter`.
+  void emissionDensity(int emitter, uint32_t primitive, Vec3 normal, Vec3 direction, float& pdfPosition,
+                       float& pdfDirection) const;
+  // Radius of the disk infinite lights emit from (the scene's bounding radius).
+  float sceneRadius() const { return sceneRadius_; }
+
  private:
   enum class Kind { Triangle, Sphere, Point, Environment, Directional };
   struct Item {
@@ -63,6 +95,12 @@ class LightSampler {
   // 1 - cos of the half-angle of the cone sphere `sphere` subtends at `ref`, when sample()
   // samples that cone from there; 0 when it samples the sphere by area instead.
   float sphereCone(uint32_t sphere, Vec3 ref) const;
+  // An infinite light's ray along `direction`: from a point of the disk of the scene's radius
+  // that faces it, outside the scene; the density per unit area across the beam.
+  Vec3 beamOrigin(Vec3 direction, float u1, float u2) const;
+  float beamDensity() const;
+  // The item sample() and sampleEmission() take for uPick, and its probability.
+  const Item& pick(double uPick, float& probability) const;
   // The probability of picking a primitive's light (0 for one that does not emit).
   float pickProbability(uint32_t primitive) const;
   bool sampleTriangle(const Item& item, float prob, Vec3 ref, float u1, float u2, LightSample& out) const;

@@ -6,6 +6,7 @@
 // projection; a fixed vertex), or, with nothing to connect to, it must have traced into the
 // light. The mutation's start wrote these numbers (mutation.h).
 #include "models/bsdf.h"
+#include "kernels/surface_vertex.h"
 #include "stages/chain_stages.h"
 #include "core/rng.h"
 #include "models/surface.h"
@@ -78,15 +79,8 @@ size_t stageChainTrace(const StepConfig& ctx, const ChainQueue& chains, const Ve
     }
     const SurfacePoint sp = surfaceAt(scene, hits.primID[k], hits.u[k], hits.v[k]);
     const Material& m = scene.materials[size_t(sp.material)];
-    z.p = sp.position;
-    z.ns = sp.shading.n;
-    z.tangentAngle = m.anisotropic() ? sp.shading.tangentAngle() : 0.0f;
-    z.ng = sp.geometricNormal;
-    z.material = sp.material;
-    z.u = sp.u;
-    z.v = sp.v;
+    setSurfaceVertex(z, sp, m);
     z.kind = expected.kind;
-    z.emitter = sp.emitter;
 
     if (expected.kind == kLightVertex) {
       if (!tracesToLight || isBlack(mc.lights.emitted(sp, -dir))) {

@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "kernels/erpt_path.h"
+#include "kernels/surface_vertex.h"
 #include "core/rng.h"
 #include "stages/stages.h"
 #include "tracer/tracer.h"
@@ -64,15 +65,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     const Material& m = ctx.scene.materials[sp.material];
     if (recording) {
       VertexQueue::Row v;  // the whole row: pdfForward 0 and the parent link are written too
-      v.p = sp.position;
-      v.ns = sp.shading.n;
-      v.tangentAngle = m.anisotropic() ? sp.shading.tangentAngle() : 0.0f;
-      v.ng = sp.geometricNormal;
-      v.material = sp.material;
-      v.u = sp.u;
-      v.v = sp.v;
-      v.kind = m.isPureSpecular() ? kSpecularVertex : kNonSpecularVertex;
-      v.emitter = sp.emitter;
+      setSurfaceVertex(v, sp, m);
       v.parent = paths.lastVertex[id];
       history.vertices->setRow(vertex, v);
       paths.lastVertex[id] = int32_t(vertex);

@@ -174,7 +174,7 @@ TEST(CompareCli, BadArgumentsFailBeforeRendering) {
   };
   for (const Case& c : {Case{" --reference " + dir.file("ref24.exr"), "not the same size"},
                         Case{" --reference " + dir.file("missing.exr"), "missing.exr"},
-                        Case{" --reference " + dir.file("ref24.exr") + " --integrators path,bdpt", "unknown integrator 'bdpt'"},
+                        Case{" --reference " + dir.file("ref24.exr") + " --integrators path,vcm", "unknown integrator 'vcm'"},
                         Case{" --reference " + dir.file("ref24.exr") + " --integrators 'erpt[--flow sideways]'", "--flow"},
                         Case{" --reference " + dir.file("ref24.exr") + " --integrators 'erpt[--spp 2'", "unbalanced"}}) {
     const test::CommandResult r = test::runCli(base + c.args);

@@ -29,6 +29,7 @@ const std::map<std::string, std::map<std::string, std::string>> kBaseline = {
     {"pmc-er",
      {{"--spp", "2"}, {"--define", "res=17"}, {"--population", "300"}, {"--mutations-per-member", "4"},
       {"--direct-samples", "4"}, {"--pmc-train-iterations", "1"}}},
+    {"bdpt", {{"--spp", "2"}, {"--define", "res=17"}}},
     {"mlt",
      {{"--define", "res=17"}, {"--mutations-per-pixel", "8"}, {"--chains", "16"}, {"--bootstrap", "2"},
       {"--direct-samples", "4"}}},
@@ -85,6 +86,9 @@ const OptionCase kOptions[] = {
     {"--large-step-prob", "0.6", Effect::ChangesImage},
     {"--bootstrap", "4", Effect::ChangesImage},
     {"--chains", "8", Effect::ChangesImage},
+    {"--bdpt-s", "2", Effect::ChangesImage},
+    {"--bdpt-t", "2", Effect::ChangesImage},
+    {"--bdpt-weights", "none", Effect::ChangesImage},
 };
 // Not in the table: --display (needs a tev viewer listening; its scope is --checkpoint's) and
 // --checkpoint-every (meaningless without --checkpoint, which the CLI says).
@@ -143,7 +147,7 @@ TEST_P(OptionsTable, EveryOptionMeansSomethingOrIsRefused) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Cli, OptionsTable, ::testing::Values("path", "direct", "erpt", "pmc-er", "mlt"),
+INSTANTIATE_TEST_SUITE_P(Cli, OptionsTable, ::testing::Values("path", "direct", "erpt", "pmc-er", "mlt", "bdpt"),
                          [](const auto& info) {
                            std::string name = info.param;
                            name.erase(std::remove(name.begin(), name.end(), '-'), name.end());

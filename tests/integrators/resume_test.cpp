@@ -52,6 +52,9 @@ std::vector<Case> cases() {
   RenderSettings direct = base;
   direct.integrator = "direct";
   out.push_back({"direct", direct});
+  RenderSettings bdpt = tent;
+  bdpt.integrator = "bdpt";
+  out.push_back({"bdpt tent", bdpt});
   RenderSettings erpt = base;
   erpt.integrator = "erpt";
   erpt.width = erpt.height = 48;  // groups of 3 passes
@@ -305,7 +308,7 @@ TEST(Resume, SplitRendersAddUpToTheWholeRender) {
   s.filterSet = true;
   s.filter = FilterKind::Tent;  // splatting: weights are summed too
   pmcOf(s).population = 200;
-  for (const char* integrator : {"path", "direct", "erpt", "pmc-er"}) {
+  for (const char* integrator : {"path", "direct", "erpt", "pmc-er", "bdpt"}) {
     SCOPED_TRACE(integrator);
     s.integrator = integrator;
     erptOf(s).directSamples = 4;

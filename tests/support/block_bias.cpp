@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -124,7 +125,11 @@ BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSe
   const BlockZScores z = blockZScores(blockStats(images, kBlock), reference);
   std::printf("%s: %zu blocks of 8x8: mean z^2 %.2f, worst |z| %.2f (the reference's share of the variance %.0f%%)\n",
               settings.integrator.c_str(), z.z.size(), z.meanSquare, z.worst, 100 * z.secondShare);
-  EXPECT_EQ(z.z.size(), 64u);
+  // Every block the reference has light in is compared (a scene may leave some black).
+  const size_t lit = size_t(std::count_if(reference.varianceOfMean.begin(), reference.varianceOfMean.end(),
+                                          [](double v) { return v > 0; }));
+  EXPECT_GE(lit, 32u);
+  EXPECT_GE(z.z.size(), lit);
   if (assertBounds) {
     EXPECT_LT(z.meanSquare, 2.0);
     EXPECT_LT(z.worst, 4.5);

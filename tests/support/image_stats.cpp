@@ -64,6 +64,24 @@ BlockZScores blockZScores(const std::vector<RgbImage>& a, const std::vector<RgbI
   return blockZScores(blockStats(a, block), blockStats(b, block));
 }
 
+std::vector<double> leaveOneOutRelMse(const std::vector<RgbImage>& images) {
+  const size_t n = images.size(), pixels = images[0].pixels.size();
+  std::vector<double> sum(pixels * 3, 0.0), result;
+  for (const RgbImage& im : images)
+    for (size_t p = 0; p < pixels; ++p)
+      for (int c = 0; c < 3; ++c) sum[3 * p + size_t(c)] += im.pixels[p][c];
+  for (const RgbImage& im : images) {
+    double e = 0;
+    for (size_t p = 0; p < pixels; ++p)
+      for (int c = 0; c < 3; ++c) {
+        const double own = im.pixels[p][c], others = (sum[3 * p + size_t(c)] - own) / double(n - 1);
+        e += (own - others) * (own - others) / (others * others + 0.01);
+      }
+    result.push_back(e / double(pixels * 3));
+  }
+  return result;
+}
+
 void expectBitIdentical(const RgbImage& a, const RgbImage& b) {
   ASSERT_EQ(a.width, b.width);
   ASSERT_EQ(a.pixels.size(), b.pixels.size());

@@ -24,6 +24,10 @@ struct BlockZScores {
   // both), averaged over the blocks: how much a noisier reference costs the test in power.
   double secondShare = 0;
 };
+// relMSE of every image against the mean of the others (pixel and channel-wise, with the usual
+// 0.01 in the denominator): each run's error without a stored reference.
+std::vector<double> leaveOneOutRelMse(const std::vector<RgbImage>& images);
+
 // Same size and every channel of every pixel equal, bit for bit (gtest failures otherwise).
 void expectBitIdentical(const RgbImage& a, const RgbImage& b);
 

@@ -71,19 +71,8 @@ RgbImage renderDirect(const Scene& scene, const RenderSettings& settings, Render
     return true;
   };
   SamplePassHooks passes;
-  passes.save = [&](ByteWriter& w) {
-    film.save(w);
-    w.put(stats.samples), w.put(stats.rays), w.put(stats.invalidSamples);
-  };
-  passes.load = [&](ByteReader& r) {
-    film.load(r);
-    r.get(stats.samples), r.get(stats.rays), r.get(stats.invalidSamples);
-  };
+  setFilmStateHooks(passes, film, stats);
   passes.run = run;
-  passes.reduce = [&](const RenderShare& share) {
-    film.reduce(share.sumAcrossRanks);
-    sumCounters(share, {&stats.samples, &stats.rays, &stats.invalidSamples});
-  };
   passes.image = [&](int done) { return film.resolve(double(done)); };
   return renderInSamplePasses(settings, setup.order.size(), stats, passes);
 }

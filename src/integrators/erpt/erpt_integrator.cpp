@@ -19,6 +19,7 @@
 #include "integrators/chain_lanes.h"
 #include "integrators/noise_filters.h"
 #include "integrators/seed_checks.h"
+#include "integrators/seed_sampler.h"
 #include "integrators/path/path_integrator.h"
 #include "render_setup.h"
 #include "chain_options.h"
@@ -58,7 +59,7 @@ double erptPilotEnergy(const Scene& scene, const RenderSettings& s, RenderStats&
     }
   };
   RenderStats pilotStats;
-  renderPath(scene, pilot, pilotStats);
+  renderWithSeedSampler(scene, pilot, pilotStats);
   stats.rays += pilotStats.rays;
   if (s.share.split()) {  // the ranks' pilot passes together (pilotStats.spp is already their total)
     std::vector<double> total{energy};
@@ -86,8 +87,8 @@ RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats
     if (!stopRequested(s.stop) || s.share.split()) direct = renderDirectPass(scene, s, stats);
   }
 
-  RenderSetup setup(scene, s);
-  FilmDensity density(setup.filter, s.width, s.height);
+  RenderSetup setup(scene, s, seedFilmMode(o));
+  FilmDensity density(setup.filter, s.width, s.height, o.seeds == SeedSampler::Bdpt);
   // The chains' random streams: a rank of a split render has its own (its counters start at 0 too).
   const uint64_t chainSeed = s.share.split() ? streamKey(s.seed, kRankStream, uint64_t(s.share.rank)) : s.seed;
   ChainLanes::Config config{StepConfig{MeasureContext{scene, setup.lights, setup.camera, density}, stepSettingsOf(o)},
@@ -135,7 +136,9 @@ RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats
   passes.run = [&](int first, int end, const std::function<void(double)>& progress) {
     chainsRan = true;
     const PathTraceOutput out{nullptr, nullptr, &store, sink, progress, s.stop};
-    if (!tracePathSamples(setup, passSamples(setup.order, first, end, s.share), out, seedStats) || !chainsRan) return false;
+    if (!traceSeedSamples(o.seeds, s.height, setup, passSamples(setup.order, first, end, s.share), out, seedStats) ||
+        !chainsRan)
+      return false;
     return timed([&] { return chains.finish(); });
   };
   passes.reduce = [&](const RenderShare& share) {
@@ -179,7 +182,7 @@ IntegratorModule erptModule() {
                              "at most this many chains per seed; a seed that would start more starts this many, each "
                              "depositing more per step (same total)",
                              1, 1000000, [](auto& s) -> auto& { return erptOf(s).maxChainsPerSeed; }),
-               directSamplesOption()};
+               directSamplesOption(), seedsOption()};
   addOptions(m.options, perturbationOptions());
   addOptions(m.options, depositOptions());
   m.validate = [](const RenderSettings& s) { validateErptSettings(erptOf(s)); };

@@ -29,6 +29,7 @@
 #include "stages/mlt_stages.h"
 #include "core/rng.h"
 #include "integrators/seed_checks.h"
+#include "integrators/seed_sampler.h"
 #include "integrators/redistribution_parts.h"
 #include "integrators/path/path_integrator.h"
 #include "render_setup.h"
@@ -172,8 +173,10 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   step.expectedDeposit = true;  // MLT's expected-value splatting of current and proposed paths
   const RgbImage direct = renderDirectPass(scene, s, stats);
 
-  RenderSetup setup(scene, s);
-  FilmDensity density(setup.filter, s.width, s.height);
+  // With BDPT seeds the chains' film density is uniform (film_density.h), and so are the large
+  // steps' camera samples (the setup samples film positions uniformly in the pixel).
+  RenderSetup setup(scene, s, seedFilmMode(options));
+  FilmDensity density(setup.filter, s.width, s.height, options.seeds == SeedSampler::Bdpt);
   LargeStepModel model;
   model.probability = mltOf(s).largeStepProbability;
   model.minVertices = options.directSamples > 0 ? 4 : 2;
@@ -199,7 +202,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   bs.spp = bootstrapSamplesPerPixel(mltOf(s), double(s.width) * double(s.height));
   bs.seed = streamKey(s.seed, kBootstrapStream, 0);
   bs.tracer = setup.sharedTracer;
-  const RenderSetup bootSetup(scene, bs);
+  const RenderSetup bootSetup(scene, bs, seedFilmMode(options));
   const size_t pixels = bootSetup.order.size();
   const PathSampleSet all{pixels * size_t(bs.spp), [&](size_t k, uint32_t& pixel, uint32_t& sample) {
                             pixel = bootSetup.order[k % pixels];
@@ -207,7 +210,8 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
                           }};
   struct Origin {
     uint64_t sample;
-    uint8_t vertices, explicitLight;
+    uint16_t vertices;
+    uint8_t technique;  // the seed's explicitLight
   };
   std::vector<Origin> origins;  // per domain ordinal
   SeedStore store;
@@ -221,7 +225,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
           boot.energyByLength[b.seeds.vertexCount[i]] += e;
           if (b.seeds.explicitLight[i]) boot.neeEnergyByLength[b.seeds.vertexCount[i]] += e;
           boot.total += e;
-          origins.push_back({b.seeds.path[i], uint8_t(b.seeds.vertexCount[i]), b.seeds.explicitLight[i]});
+          origins.push_back({b.seeds.path[i], uint16_t(b.seeds.vertexCount[i]), b.seeds.explicitLight[i]});
         },
         [&](const SeedStore& b, size_t i) {
           ms.inPlaceEnergy += depositSeedInPlace(density, b, i, luminance(b.contribution(i)), inPlace);
@@ -230,8 +234,8 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
         ordinal);
   };
   RenderStats bootStats;
-  if (!tracePathSamples(bootSetup, all, PathTraceOutput{nullptr, nullptr, &store, firstSink, nullptr, s.stop},
-                        bootStats))
+  if (!traceSeedSamples(options.seeds, bs.height, bootSetup, all,
+                        PathTraceOutput{nullptr, nullptr, &store, firstSink, nullptr, s.stop}, bootStats))
     return partial();
   const double spp = double(bs.spp);
   ms.bootstrapSamples = bootStats.samples;
@@ -258,12 +262,16 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
     const PathSampleSet some{again.size(), [&](size_t j, uint32_t& pixel, uint32_t& sample) { all.at(again[j], pixel, sample); }};
     SeedStore retraced;
     RenderStats secondStats;
-    if (!tracePathSamples(bootSetup, some, PathTraceOutput{nullptr, nullptr, &retraced, {}, nullptr, s.stop},
-                          secondStats))
+    if (!traceSeedSamples(options.seeds, bs.height, bootSetup, some,
+                          PathTraceOutput{nullptr, nullptr, &retraced, {}, nullptr, s.stop}, secondStats))
       return partial();
     bootStats.rays += secondStats.rays;
-    // Each chosen contribution: its sample's row j in `again`, then its (count, technique).
-    auto name = [](uint64_t j, uint32_t vertices, uint32_t explicitLight) { return (j << 8) | (vertices << 1) | explicitLight; };
+    // Each chosen contribution: its sample's row j in `again`, then its (count, technique): a
+    // path-traced sample makes one path per count and technique, a BDPT sample one per count
+    // and strategy (its light vertices s, in explicitLight).
+    auto name = [](uint64_t j, uint32_t vertices, uint32_t technique) {
+      return (j << 24) | (uint64_t(vertices & 0xfff) << 12) | (technique & 0xfff);
+    };
     std::unordered_map<uint64_t, size_t> byName;
     for (size_t i = 0; i < retraced.size(); ++i)
       byName.emplace(name(retraced.seeds.path[i], retraced.seeds.vertexCount[i], retraced.seeds.explicitLight[i]), i);
@@ -272,7 +280,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
       while (next + copies < chosen.size() && chosen[next + copies] == chosen[next]) ++copies;
       const Origin& o = origins[chosen[next]];
       const uint64_t j = uint64_t(std::lower_bound(again.begin(), again.end(), o.sample) - again.begin());
-      const auto it = byName.find(name(j, o.vertices, o.explicitLight));
+      const auto it = byName.find(name(j, o.vertices, o.technique));
       if (it == byName.end()) throw std::logic_error("mlt: a bootstrap path did not trace again identically");
       starts.append(retraced, it->second, copies);
       next += copies;
@@ -320,7 +328,7 @@ IntegratorModule mltModule() {
   m.description = "Metropolis light transport on ERPT's mutations plus an independent large step (docs/mlt.md)";
   // No sample passes (no checkpoints), its own chain length and expected-value deposits, and
   // a bootstrap instead of ERPT's pilot.
-  m.options = {mutationsPerPixelOption(), directSamplesOption(),
+  m.options = {mutationsPerPixelOption(), directSamplesOption(), seedsOption(),
                realOption("large-step-prob",
                           "probability that a chain step is a large step, a fresh path-tracer sample through a "
                           "uniform pixel",

@@ -229,6 +229,20 @@ uint64_t traceSeedsInline(const Tracer& tracer, const StageContext& ctx, const P
   return rays;
 }
 
+void deliverBatch(const PathTraceOutput& out, size_t done, size_t total) {
+  if (out.seeds && out.seedSink) {
+    out.seedSink(*out.seeds);
+    out.seeds->clear();
+  }
+  if (out.progress) out.progress(double(done) / double(total));
+}
+
+void addRunCounts(RenderStats& stats, uint64_t samples, uint64_t rays, uint64_t invalid) {
+  stats.samples += samples;
+  stats.rays += rays;
+  stats.invalidSamples += invalid;
+}
+
 bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, const PathTraceOutput& out,
                       RenderStats& stats) {
   const size_t total = samples.count;
@@ -277,15 +291,9 @@ bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
       out.splat->addSamples(batch.x.data(), batch.y.data(), batch.r.data(), batch.g.data(), batch.b.data(), n);
       stats.stages.add("splat", secondsSince(start));
     }
-    if (out.seeds && out.seedSink) {
-      out.seedSink(*out.seeds);
-      out.seeds->clear();
-    }
-    if (out.progress) out.progress(double(first + n) / double(total));
+    deliverBatch(out, first + n, total);
   }
-  stats.samples += total;
-  stats.rays += rayCount;
-  stats.invalidSamples += invalid;
+  addRunCounts(stats, total, rayCount, invalid);
   return complete;
 }
 
@@ -294,25 +302,12 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
   std::optional<SplatFilm> splat;
   if (setup.filmMode != FilmMode::Fis) splat.emplace(setup.filter, settings.width, settings.height);
   SamplePassHooks passes;
-  passes.save = [&](ByteWriter& w) {
-    if (splat) splat->save(w);
-    else setup.film.save(w);
-    w.put(stats.samples), w.put(stats.rays), w.put(stats.invalidSamples);
-  };
-  passes.load = [&](ByteReader& r) {
-    if (splat) splat->load(r);
-    else setup.film.load(r);
-    r.get(stats.samples), r.get(stats.rays), r.get(stats.invalidSamples);
-  };
+  if (splat) setFilmStateHooks(passes, *splat, stats);
+  else setFilmStateHooks(passes, setup.film, stats);
   passes.run = [&](int first, int end, const std::function<void(double)>& progress) {
     const PathTraceOutput out{splat ? nullptr : &setup.film, splat ? &*splat : nullptr, settings.seeds, settings.seedSink,
                               progress, settings.stop};
     return tracePathSamples(setup, passSamples(setup.order, first, end, settings.share), out, stats);
-  };
-  passes.reduce = [&](const RenderShare& share) {
-    if (splat) splat->reduce(share.sumAcrossRanks);
-    else setup.film.reduce(share.sumAcrossRanks);
-    sumCounters(share, {&stats.samples, &stats.rays, &stats.invalidSamples});
   };
   passes.image = [&](int done) {
     return splat ? splat->resolve(setup.filmMode, double(done)) : setup.film.resolve(double(done));

@@ -39,6 +39,12 @@ struct PathTraceOutput {
   std::function<void(double fraction)> progress;
   const std::atomic<bool>* stop = nullptr;  // checked before every batch
 };
+// The end of one batch of a sampler's run: its seeds (in out.seeds) go to out.seedSink and are
+// cleared, and the progress is reported (`done` of `total` samples). Adds a finished run's
+// counts to `stats`.
+void deliverBatch(const PathTraceOutput& out, size_t done, size_t total);
+void addRunCounts(RenderStats& stats, uint64_t samples, uint64_t rays, uint64_t invalid);
+
 // Runs the path tracer over `samples` with the setup's camera, lights and stage context (its
 // spp sets the strata); adds samples, rays and invalid samples to `stats`. Returns false if
 // out.stop turned true before every batch was done (what the batches done added stays).

@@ -19,6 +19,7 @@
 #include "core/rng.h"
 #include "integrators/pmc_er/stratified_pool.h"
 #include "integrators/redistribution_parts.h"
+#include "integrators/seed_sampler.h"
 #include "core/system_memory.h"
 #include "integrators/pmc_er/pmc_population.h"
 #include "render_setup.h"
@@ -86,12 +87,12 @@ void trainRegionTable(const Scene& scene, const RenderSettings& s, const StepCon
   ts.seed = streamKey(s.seed, kTrainStream, 0);
   const double positions = double(p.population) * (1.0 + p.trainIterations * p.resampleRate);
   ts.spp = int(std::clamp(std::ceil(positions / pixels), 1.0, double(1 << 20)));
-  RenderSetup trainSetup(scene, ts);
+  RenderSetup trainSetup(scene, ts, seedFilmMode(erptOf(s)));
   PmcSettings tp = p;
   tp.adapt = PmcAdapt::Off;
   PmcMixture uniform(tp, s.width, s.height);
   RenderStats trainStats;
-  PmcPopulation trainer(trainSetup, PmcPopulation::Config{ctx, chainSettingsOf(erptOf(s)), tp, ts.seed, nullptr}, uniform, trainStats);
+  PmcPopulation trainer(trainSetup, PmcPopulation::Config{ctx, chainSettingsOf(erptOf(s)), tp, ts.seed, nullptr, erptOf(s).seeds}, uniform, trainStats);
   trainer.run(PoolRounds::all(StratifiedPool{pixels, uint32_t(ts.spp), ts.seed}), p.trainIterations);
   mixture.setRegionTable(trainer.regionSums(), 1.0);
   ps.trainingIterations = pmcStatsOf(trainStats).trainingIterations;
@@ -151,8 +152,8 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
   ErptStats& es = erptStatsOf(stats);
   PmcStats& ps = pmcStatsOf(stats);
 
-  RenderSetup setup(scene, s);
-  FilmDensity density(setup.filter, s.width, s.height);
+  RenderSetup setup(scene, s, seedFilmMode(erptOf(s)));
+  FilmDensity density(setup.filter, s.width, s.height, erptOf(s).seeds == SeedSampler::Bdpt);
   const StepConfig ctx{MeasureContext{scene, setup.lights, setup.camera, density}, pmcStepSettings(s)};
   const uint32_t pixels = uint32_t(s.width) * uint32_t(s.height);
   PmcMixture mixture(p, s.width, s.height);
@@ -171,7 +172,7 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
     direct = renderDirectPass(scene, s, stats);
   }
 
-  PmcPopulation population(setup, PmcPopulation::Config{ctx, chainSettingsOf(erptOf(s)), p, s.seed, &setup.film}, mixture, stats);
+  PmcPopulation population(setup, PmcPopulation::Config{ctx, chainSettingsOf(erptOf(s)), p, s.seed, &setup.film, erptOf(s).seeds}, mixture, stats);
   const StratifiedPool pool{pixels, uint32_t(s.spp), streamKey(s.seed, kPoolStream, 0)};
   const uint32_t rank = uint32_t(s.share.rank), ranks = uint32_t(std::max(1, s.share.ranks));
   SamplePassHooks passes;
@@ -267,7 +268,7 @@ IntegratorModule pmcErModule() {
                  "once the pool is used up, the population iterates until a member holds at most this share of "
                  "its energy, then deposits the rest where it stands (1: at once)",
                  0, 1, [](auto& s) -> auto& { return pmcOf(s).drainRemainder; }, /*minOpen=*/true),
-      directSamplesOption()};
+      directSamplesOption(), seedsOption()};
   addOptions(m.options, depositOptions());
   m.validate = [](const RenderSettings& s) { validatePmcSettings(pmcOf(s), erptOf(s)); };
   m.render = renderPmcEr;

@@ -9,6 +9,7 @@
 #include "integrators/systematic_resampling.h"
 #include "core/rng.h"
 #include "integrators/seed_checks.h"
+#include "integrators/seed_sampler.h"
 #include "integrators/path/path_integrator.h"
 #include "sample_passes.h"
 
@@ -178,7 +179,7 @@ void PmcPopulation::regenerate(const PoolRounds& rounds, size_t count) {
   out.seedSink = [&](SeedStore& batch) { absorb(batch, rounds, first); };
   const PathSampleSet samples{count, [&](size_t k, uint32_t& pixel, uint32_t& sample) { rounds.at(first + k, pixel, sample); }};
   RenderStats traced;
-  tracePathSamples(tracing_, samples, out, traced);
+  traceSeedSamples(config_.seeds, tracing_.film.height(), tracing_, samples, out, traced);
   poolCursor_ += count;
   pmc_.poolUsed += count;
   stats_.samples += traced.samples;

@@ -45,11 +45,12 @@ class PmcPopulation {
     PmcSettings pmc;
     uint64_t seed = 0;     // chain streams, candidate choice and the resampling comb
     Film* film = nullptr;  // where deposits go; null: a training population (deposits nothing)
+    SeedSampler seeds = SeedSampler::Path;  // what makes the pool's seeds (`tracing` made for it)
   };
   // Memory one member slot takes (queues, spare copies, energies and mixture weights), for
   // refusing populations that would not fit.
   static size_t bytesPerMember(int components);
-  // `tracing`: the path tracer's setup (its stage context keys and stratifies pool samples).
+  // `tracing`: the seed sampler's setup (its stage context keys and stratifies pool samples).
   PmcPopulation(const RenderSetup& tracing, const Config& config, PmcMixture& mixture, RenderStats& stats);
 
   // Runs over the positions of `rounds` until they are used up, or until the prefix `allowed`

@@ -130,7 +130,7 @@ RgbImage renderPmcForTime(const Scene& scene, const RenderSettings& s, const Pmc
   const PmcSettings& p = pmcOf(s);
   const size_t pixels = size_t(s.width) * size_t(s.height);
   PmcPopulation population(parts.setup,
-                           PmcPopulation::Config{parts.ctx, chainSettingsOf(erptOf(s)), p, s.seed, &parts.setup.film},
+                           PmcPopulation::Config{parts.ctx, chainSettingsOf(erptOf(s)), p, s.seed, &parts.setup.film, erptOf(s).seeds},
                            parts.mixture, stats);
   const StratifiedPool pool{uint32_t(pixels), kOpenEndedRounds, streamKey(s.seed, kPoolStream, 0)};
   DirectChunks direct(scene, s);

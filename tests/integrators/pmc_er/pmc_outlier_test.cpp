@@ -13,30 +13,11 @@
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
 #include "support/block_bias.h"
+#include "support/image_stats.h"
 #include "support/test_support.h"
 
 namespace erpt {
 namespace {
-
-// relMSE of every image against the mean of the others (pixel and channel-wise, with the
-// usual 0.01 in the denominator).
-std::vector<double> leaveOneOutRelMse(const std::vector<RgbImage>& images) {
-  const size_t n = images.size(), pixels = images[0].pixels.size();
-  std::vector<double> sum(pixels * 3, 0.0), result;
-  for (const RgbImage& im : images)
-    for (size_t p = 0; p < pixels; ++p)
-      for (int c = 0; c < 3; ++c) sum[3 * p + size_t(c)] += im.pixels[p][c];
-  for (const RgbImage& im : images) {
-    double e = 0;
-    for (size_t p = 0; p < pixels; ++p)
-      for (int c = 0; c < 3; ++c) {
-        const double own = im.pixels[p][c], others = (sum[3 * p + size_t(c)] - own) / double(n - 1);
-        e += (own - others) * (own - others) / (others * others + 0.01);
-      }
-    result.push_back(e / double(pixels * 3));
-  }
-  return result;
-}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -65,8 +46,8 @@ std::vector<RgbImage> renders(const std::string& integrator, int spp, uint64_t f
 // 1.59. With members that cannot move (--radii 3000) runs reach 9 times ERPT's.
 TEST(StatisticalOutliers, PmcErAddsNoOutlierToItsSeeds) {
   const int runs = 10;
-  const std::vector<double> pmc = leaveOneOutRelMse(renders("pmc-er", 8, 3100, runs));
-  const std::vector<double> erpt = leaveOneOutRelMse(renders("erpt", 8, 3100, runs));
+  const std::vector<double> pmc = test::leaveOneOutRelMse(renders("pmc-er", 8, 3100, runs));
+  const std::vector<double> erpt = test::leaveOneOutRelMse(renders("erpt", 8, 3100, runs));
   for (int k = 0; k < runs; ++k)
     EXPECT_LT(pmc[size_t(k)], 3.0 * erpt[size_t(k)])
         << "seed " << 3100 + k << ": PMC-ER relMSE " << pmc[size_t(k)] << ", ERPT " << erpt[size_t(k)];

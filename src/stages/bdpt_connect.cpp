@@ -1,0 +1,280 @@
+// BDPT's connections: every strategy (s, t) of a sample, with its MIS weight
+// (kernels/bdpt_mis.h). s = 0: emission the camera subpath hit; s = 1: next-event estimation
+// from a camera vertex; s >= 2, t >= 2: a light vertex joined to a camera vertex; t = 1: a
+// light vertex joined to the lens, splatted where it lands on the film (light tracing).
+#include <algorithm>
+#include <limits>
+
+#include "core/rng.h"
+#include "kernels/bdpt_mis.h"
+#include "kernels/bdpt_vertex.h"
+#include "stages/bdpt_stages.h"
+#include "tracer/tracer.h"
+
+namespace erpt {
+
+namespace {
+
+// The subpath ending at vertex `last`, in walk order (its first vertex first).
+void gatherSubpath(const BdptVertexQueue& vertices, int32_t last, std::vector<BdptVertex>& out,
+                   std::vector<int32_t>& index) {
+  out.clear();
+  index.clear();
+  for (int32_t v = last; v >= 0; v = vertices.parent[size_t(v)]) {
+    out.push_back(vertices.row(size_t(v)));
+    index.push_back(v);
+  }
+  std::reverse(out.begin(), out.end());
+  std::reverse(index.begin(), index.end());
+}
+
+bool hittableLight(const Scene& scene, const BdptVertex& light) {
+  const EmitterKind kind = scene.emitters[size_t(light.emitter)].kind;
+  return kind == EmitterKind::Area || kind == EmitterKind::Constant;
+}
+bool areaLight(const Scene& scene, const BdptVertex& light) {
+  return scene.emitters[size_t(light.emitter)].kind == EmitterKind::Area;
+}
+
+// The densities of one path x_0 .. x_k made by strategy (s, t), for its MIS weight: the
+// subpaths' own (camera[0 .. t), light[0 .. s), light[0] the light vertex, x_{t+m} =
+// light[s-1-m]), with the four that the connection changes passed in: x_t and x_{t+1} sampled
+// from the camera side, x_{t-1} and x_{t-2} from the light side.
+struct MisBuilder {
+  BdptConnectScratch& scratch;
+  BdptMisPath path;
+  void build(const BdptVertex* camera, int t, const BdptVertex* light, int s, float cameraT, float cameraT1,
+             float lightT1, float lightT2) {
+    const int k = s + t - 1;
+    scratch.cameraDensity.resize(size_t(k) + 1);
+    scratch.lightDensity.resize(size_t(k) + 1);
+    scratch.specular.resize(size_t(k) + 1);
+    float* pc = scratch.cameraDensity.data();
+    float* pl = scratch.lightDensity.data();
+    uint8_t* specular = scratch.specular.data();
+    for (int i = 0; i < t; ++i) {
+      pc[i] = camera[i].pdfForward;
+      pl[i] = camera[i].pdfReverse;
+      specular[i] = camera[i].kind == kSpecularVertex;
+    }
+    for (int i = t; i <= k; ++i) {
+      const BdptVertex& z = light[k - i];
+      pl[i] = z.pdfForward;
+      pc[i] = z.pdfReverse;
+      specular[i] = z.kind == kSpecularVertex;
+    }
+    if (t <= k) pc[t] = cameraT;
+    if (t + 1 <= k) pc[t + 1] = cameraT1;
+    if (t >= 1) pl[t - 1] = lightT1;
+    if (t >= 2) pl[t - 2] = lightT2;
+    pl[0] = 0;  // the camera is never hit (t >= 1)
+    if (t >= 1) specular[t - 1] = 0;
+    if (t <= k) specular[t] = 0;
+    path.k = k;
+    path.cameraDensity = pc;
+    path.lightDensity = pl;
+    path.specular = specular;
+  }
+};
+
+}  // namespace
+
+void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptConnectScratch& scratch,
+                      std::vector<Color>& radiance, BdptConnectionQueue& connections, RayQueue& rays, IndexRange range) {
+  const Scene& scene = ctx.stage.scene;
+  const LightSampler& lights = ctx.stage.lights;
+  const Camera& camera = ctx.stage.camera;
+  const int maxDepth = ctx.stage.maxDepth;
+  const int width = ctx.stage.width, height = ctx.height;
+  const float ppu = camera.pixelsPerPlaneUnit();
+  auto keep = [&](int s, int t) {
+    return (ctx.onlyS < 0 || s == ctx.onlyS) && (ctx.onlyT < 0 || t == ctx.onlyT) &&
+           (maxDepth < 0 || s + t - 1 <= maxDepth);
+  };
+  auto weight = [&](const MisBuilder& mis, int s) { return ctx.unweighted ? 1.0f : bdptMisWeight(mis.path, s); };
+  // Appends a contribution of strategy (s, t) with its shadow ray from `from` to `to` (none for s = 0).
+  auto addConnection = [&](uint32_t sample, int s, int t, Color value, float misWeight, int32_t cameraVertex,
+                           int32_t lightVertex, const Vec3* from, Vec3 to, float fx, float fy) {
+    const size_t n = connections.size();
+    if (n + 1 > rays.size()) {
+      RayQueue bigger;
+      prepareRays(bigger, std::max<size_t>(1024, rays.size() * 2));
+      for (size_t r = 0; r < rays.size(); ++r) bigger.copyRow(r, rays, r);
+      rays = std::move(bigger);
+    }
+    connections.resize(n + 1);
+    connections.sample[n] = sample;
+    connections.valueSet(n, value);
+    connections.misWeight[n] = misWeight;
+    connections.s[n] = uint16_t(s);
+    connections.t[n] = uint16_t(t);
+    connections.cameraVertex[n] = cameraVertex;
+    connections.lightVertex[n] = lightVertex;
+    connections.toCamera[n] = t == 1;
+    connections.filmX[n] = fx;
+    connections.filmY[n] = fy;
+    if (from) setRay(rays, n, *from, to - *from, 0.0f, 1 - 1e-4f);  // stops just short of the far vertex
+    else disableRay(rays, n);
+  };
+  // Vertices that belong to no subpath (lens points, next-event light points): extra vertex e
+  // is named -1 - e.
+  auto addExtra = [&](const BdptVertex& v) {
+    const size_t e = scratch.extraUsed++;
+    if (scratch.extra.size() <= e) scratch.extra.resize(std::max<size_t>(256, 2 * e + 2));
+    scratch.extra.setRow(e, v);
+    return -1 - int32_t(e);
+  };
+  std::vector<BdptVertex>& light = scratch.light;
+  std::vector<BdptVertex>& cam = scratch.camera;
+  std::vector<VertexBsdf> lightBsdf, cameraBsdf;
+  MisBuilder mis{scratch, {}};
+  std::vector<int32_t> lightIndex, cameraIndex;
+
+  for (size_t i = range.begin; i < range.end; ++i) {
+    if (paths.invalid[i]) {
+      radiance[i] = Color(std::numeric_limits<float>::quiet_NaN());
+      continue;
+    }
+    gatherSubpath(paths.vertices, paths.lightEnd[i], light, lightIndex);
+    gatherSubpath(paths.vertices, paths.cameraEnd[i], cam, cameraIndex);
+    lightBsdf.resize(light.size());
+    cameraBsdf.resize(cam.size());
+    for (size_t j = 0; j < light.size(); ++j) lightBsdf[j] = vertexBsdf(scene, light[j]);
+    for (size_t j = 0; j < cam.size(); ++j) cameraBsdf[j] = vertexBsdf(scene, cam[j]);
+    const int nL = int(light.size()), nC = int(cam.size());
+    const uint32_t sample = uint32_t(i);
+
+    // s = 0: the camera subpath reached a light.
+    for (int j = 1; j < nC; ++j) {
+      const BdptVertex& y = cam[j];
+      if (y.emitter < 0 || !keep(0, j + 1)) continue;
+      const Vec3 back = directionTo(y, cam[j - 1]);
+      const Color le = lightVertexEmission(scene, y, back);
+      if (isBlack(le)) continue;
+      float pdfPosition, pdfDirection;
+      lights.emissionDensity(y.emitter, y.primitive, y.ng, back, pdfPosition, pdfDirection);
+      mis.build(cam.data(), j + 1, nullptr, 0, 0, 0, 0, 0);
+      float* pl = scratch.lightDensity.data();
+      pl[j] = pdfPosition;
+      pl[j - 1] = j - 1 >= 1 ? areaDensity(pdfDirection, y, cam[j - 1]) : 0.0f;
+      scratch.specular[j] = 0;
+      mis.path.nextEventDensity = nextEventDensity(lights, y, cam[j - 1].p);
+      mis.path.lightHittable = true;
+      mis.path.lightSeenByLightTracing = y.kind != kEnvironmentVertex;
+      const float w = weight(mis, 0);
+      addConnection(sample, 0, j + 1, y.beta * le * w, w, cameraIndex[size_t(j)], 0, nullptr, {}, 0, 0);
+    }
+
+    // s = 1: next-event estimation from camera vertex j (t = j + 1).
+    const uint64_t cameraKey = sampleKey(ctx.stage.seed, paths.pixel[i], paths.sample[i]);
+    for (int j = 1; j < nC; ++j) {
+      const BdptVertex& y = cam[j];
+      if (!cameraBsdf[j].connectable() || !keep(1, j + 1)) continue;
+      LightSample ls;
+      if (!lights.sample(y.p, uniformDouble(cameraKey, bounceDim(uint32_t(j), kLightPick)),
+                         uniformFloat(cameraKey, bounceDim(uint32_t(j), kLight1)),
+                         uniformFloat(cameraKey, bounceDim(uint32_t(j), kLight2)), ls))
+        continue;
+      const Vec3 towardCamera = directionTo(y, cam[j - 1]);
+      const Color f = cameraBsdf[j].eval(towardCamera, ls.direction);
+      if (isBlack(f)) continue;
+      const BdptVertex z = lightVertexOf(scene, ls);
+      float pdfPosition, pdfDirection;
+      lights.emissionDensity(z.emitter, z.primitive, z.ng, -ls.direction, pdfPosition, pdfDirection);
+      BdptVertex lightVertex = z;
+      lightVertex.pdfForward = pdfPosition;
+      lightVertex.pdfReverse = 0;
+      mis.build(cam.data(), j + 1, &lightVertex, 1,
+                areaDensity(cameraBsdf[j].pdf(towardCamera, ls.direction), y, z), 0,
+                areaDensity(pdfDirection, z, y),
+                j - 1 >= 1 ? areaDensity(cameraBsdf[j].pdf(ls.direction, towardCamera), y, cam[j - 1]) : 0.0f);
+      mis.path.nextEventDensity = ls.pdfLight;
+      mis.path.lightHittable = hittableLight(scene, z);
+      mis.path.lightSeenByLightTracing = areaLight(scene, z);
+      const float w = weight(mis, 1);
+      const Color value = y.beta * f * ls.radiance * (w / (ls.delta ? 1.0f : ls.pdf));
+      if (isBlack(value)) continue;
+      const Vec3 origin = offsetOrigin(y.p, y.ng, ls.direction);
+      const Vec3 target = ls.environment ? origin + ls.direction * 1e7f : ls.position;
+      addConnection(sample, 1, j + 1, value, w, cameraIndex[size_t(j)], addExtra(lightVertex), &origin, target, 0, 0);
+      if (ls.environment) rays.tfar[connections.size() - 1] = std::numeric_limits<float>::infinity();
+    }
+
+    // s >= 2, t >= 2: light vertex s - 1 to camera vertex t - 1.
+    for (int s = 2; s <= nL; ++s) {
+      const BdptVertex& z = light[s - 1];
+      if (!lightBsdf[s - 1].connectable()) continue;
+      const Vec3 zOut = directionTo(z, light[s - 2]);
+      for (int t = 2; t <= nC; ++t) {
+        const BdptVertex& y = cam[t - 1];
+        if (!keep(s, t)) continue;
+        if (!cameraBsdf[t - 1].connectable()) continue;
+        const Vec3 d = z.p - y.p;
+        const float d2 = dot(d, d);
+        if (!(d2 > 0)) continue;
+        const Vec3 w = d / std::sqrt(d2);
+        const Vec3 yIn = directionTo(y, cam[t - 2]);
+        const Color fy = cameraBsdf[t - 1].eval(yIn, w);
+        if (isBlack(fy)) continue;
+        const Color fz = lightBsdf[s - 1].eval(-w, zOut);
+        if (isBlack(fz)) continue;
+        mis.build(cam.data(), t, light.data(), s, areaDensity(cameraBsdf[t - 1].pdf(yIn, w), y, z),
+                  areaDensity(lightBsdf[s - 1].pdf(-w, zOut), z, light[s - 2]),
+                  areaDensity(lightBsdf[s - 1].pdf(zOut, -w), z, y),
+                  t - 2 >= 1 ? areaDensity(cameraBsdf[t - 1].pdf(w, yIn), y, cam[t - 2]) : 0.0f);
+        mis.path.nextEventDensity = paths.lightNextEvent[i];
+        mis.path.lightHittable = hittableLight(scene, light[0]);
+        mis.path.lightSeenByLightTracing = areaLight(scene, light[0]);
+        const float misWeight = weight(mis, s);
+        const Color value = y.beta * fy * fz * z.beta * (std::abs(dot(z.ng, w)) / d2 * misWeight);
+        if (isBlack(value)) continue;
+        const Vec3 origin = offsetOrigin(y.p, y.ng, w);
+        addConnection(sample, s, t, value, misWeight, cameraIndex[size_t(t - 1)], lightIndex[size_t(s - 1)], &origin,
+                      offsetOrigin(z.p, z.ng, -w), 0, 0);
+      }
+    }
+
+    // t = 1: light vertex s - 1 to a point on the lens, splatted where it lands.
+    if (nL > 0) {
+      const uint64_t lightKey = lightSubpathKey(ctx.stage.seed, paths.pixel[i], paths.sample[i]);
+      BdptVertex eye;
+      eye.kind = kEyeVertex;
+      eye.p = camera.lensPoint(uniformFloat(lightKey, kDimLensX), uniformFloat(lightKey, kDimLensY));
+      eye.ng = camera.forward();
+      eye.pdfForward = 1;
+      for (int s = 1; s <= nL; ++s) {
+        const BdptVertex& z = light[s - 1];
+        if (!keep(s, 1)) continue;
+        if (s == 1 ? !(z.kind == kLightVertex && areaLight(scene, z)) : !lightBsdf[s - 1].connectable()) continue;
+        const Vec3 d = z.p - eye.p;
+        const float d2 = dot(d, d);
+        if (!(d2 > 0)) continue;
+        const Vec3 w = d / std::sqrt(d2);
+        const float cosCamera = camera.cosToAxis(w);
+        float fx, fy;
+        if (!(cosCamera > 0) || !camera.projectFrom(eye.p, z.p, fx, fy) || !(fx >= 0 && fx < float(width)) ||
+            !(fy >= 0 && fy < float(height)))
+          continue;
+        const Color fz = s == 1 ? lightVertexEmission(scene, z, -w) : lightBsdf[s - 1].eval(-w, directionTo(z, light[s - 2]));
+        if (isBlack(fz)) continue;
+        const float cameraPdf = cameraDirectionDensity(camera, width, height, w);
+        mis.build(&eye, 1, light.data(), s, areaDensity(cameraPdf, eye, z),
+                  s >= 2 ? areaDensity(lightBsdf[s - 1].pdf(-w, directionTo(z, light[s - 2])), z, light[s - 2]) : 0.0f,
+                  0, 0);
+        mis.path.nextEventDensity = paths.lightNextEvent[i];
+        mis.path.lightHittable = hittableLight(scene, light[0]);
+        mis.path.lightSeenByLightTracing = areaLight(scene, light[0]);
+        // The camera's importance over the strategy's density of the lens point: ppu^2 / (cos^3 W H).
+        const float importance = ppu * ppu / (cosCamera * cosCamera * cosCamera * float(width) * float(height));
+        const float misWeight = weight(mis, s);
+        const Color value = z.beta * fz * (std::abs(dot(z.ng, w)) / d2 * importance * misWeight);
+        if (isBlack(value)) continue;
+        const Vec3 origin = offsetOrigin(z.p, z.ng, -w);
+        addConnection(sample, s, 1, value, misWeight, addExtra(eye), lightIndex[size_t(s - 1)], &origin, eye.p, fx, fy);
+      }
+    }
+    radiance[i] = Color(0.0f);
+  }
+}
+
+}  // namespace erpt
