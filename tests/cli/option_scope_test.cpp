@@ -86,6 +86,7 @@ const OptionCase kOptions[] = {
     {"--large-step-prob", "0.6", Effect::ChangesImage},
     {"--bootstrap", "4", Effect::ChangesImage},
     {"--chains", "8", Effect::ChangesImage},
+    {"--seeds", "bdpt", Effect::ChangesImage},
     {"--bdpt-s", "2", Effect::ChangesImage},
     {"--bdpt-t", "2", Effect::ChangesImage},
     {"--bdpt-weights", "none", Effect::ChangesImage},
