@@ -40,6 +40,9 @@ struct ErptSettings {
   bool expectedDeposit = false; // deposit (1 - q) at y and q at z instead of the paper's rule
   int directSamples = 64;       // >= 1: one-bounce paths by a direct-lighting pass (N spp); -1: ERPT does all
   SeedSampler seeds = SeedSampler::Path;  // --seeds
+  // The probability that a chain step (one that is not MLT's large step) proposes Veach's
+  // bidirectional mutation instead of a perturbation (docs/bidirectional-mutation.md).
+  float bidirectionalMutation = 0.0f;
   FlowRule flow = FlowRule::EqualDeposition;
   // Noise filters of section 4.4 (biased; off by default).
   int pmFilterRadius = -1;      // >= 0: proposed-mutations filter, box of (2r+1)^2 pixels; -1: off

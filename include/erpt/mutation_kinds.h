@@ -15,13 +15,15 @@ enum class MutationKind : uint8_t {
   Caustic,       // caustic perturbation, angle density 1/theta on [1e-4, 0.1] rad (ERPT)
   CausticVeach,  // caustic perturbation, angle uniform in [0, theta_max(path)] (PMC-ER eq. 6)
   LargeStep,     // MLT's independent proposal: a fresh path-tracer sample (large_step.h); no unit
+  Bidirectional, // Veach's bidirectional mutation: a subpath deleted and regenerated from both ends
   Count
 };
 constexpr int kMutationKindCount = int(MutationKind::Count);
 const char* mutationName(MutationKind k);
 
 // kProposalLarge: a large step waiting for its path-tracer sample (chain_step.h's ProposalSource).
-enum ProposalState : uint8_t { kProposalWalking = 0, kProposalConnecting, kProposalComplete, kProposalRejected, kProposalLarge };
+enum ProposalState : uint8_t { kProposalWalking = 0, kProposalConnecting, kProposalComplete, kProposalRejected, kProposalLarge,
+                                  kProposalBidirectional };
 enum RejectReason : uint8_t {
   kRejectNone = 0,
   kRejectNoMutation,   // no mutation of the strategy applies to this path

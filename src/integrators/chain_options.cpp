@@ -48,6 +48,13 @@ OptionSpec seedsOption() {
       {{"path", SeedSampler::Path}, {"bdpt", SeedSampler::Bdpt}}, [](auto& s) -> auto& { return erptOf(s).seeds; });
 }
 
+OptionSpec bidirectionalMutationOption() {
+  return realOption("bidir-mutation",
+                    "probability that a chain step (MLT: one that is not a large step) proposes Veach's "
+                    "bidirectional mutation, which deletes a subpath and regenerates it from both ends",
+                    0, 1, [](auto& s) -> auto& { return erptOf(s).bidirectionalMutation; });
+}
+
 std::vector<OptionSpec> depositOptions() {
   OptionSpec pmFilter("pm-filter",
                       "proposed-mutations noise filter (ERPT paper 4.4; biased) of radius 3 unless "

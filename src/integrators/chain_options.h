@@ -14,6 +14,7 @@ OptionSpec mutationsPerPixelOption();
 std::vector<OptionSpec> perturbationOptions();  // strategy, lens radius and shape, caustic angle
 OptionSpec directSamplesOption();
 OptionSpec seedsOption();  // --seeds path|bdpt
+OptionSpec bidirectionalMutationOption();  // --bidir-mutation P
 std::vector<OptionSpec> depositOptions();       // deposit rule, proposed-mutations and consecutive-sample filters
 
 // Appends `more` to `to` (for building a module's option list from these parts).

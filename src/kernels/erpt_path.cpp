@@ -35,6 +35,7 @@ const char* mutationName(MutationKind k) {
     case MutationKind::Caustic: return "caustic";
     case MutationKind::CausticVeach: return "caustic (Veach angle)";
     case MutationKind::LargeStep: return "large step";
+    case MutationKind::Bidirectional: return "bidirectional";
     default: return "?";
   }
 }

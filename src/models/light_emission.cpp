@@ -46,17 +46,14 @@ bool LightSampler::sampleEmission(double uPick, float u1, float u2, float u3, fl
       p = s.center(i) + radial * s.radius[i];
       n = s.flipped[i] ? -radial : radial;
     }
-    const Vec3 local = squareToCosineHemisphere(u3, u4);
-    if (!(local.z > 0)) return false;
+    out.emitter = scene_.emitterOf(item.index);
+    if (!sampleEmissionDirection(out.emitter, n, u3, u4, out.direction, out.pdfDirection)) return false;
     out.origin = p;
     out.normal = n;
-    out.direction = Frame(n).toWorld(local);
-    out.emitter = scene_.emitterOf(item.index);
     out.primitive = item.index;
     out.value = scene_.emitters[size_t(out.emitter)].radiance;
     out.pdfPosition = prob / item.area;
-    out.pdfDirection = local.z * kInvPi;
-    out.cosAtLight = local.z;
+    out.cosAtLight = dot(n, out.direction);
     return out.pdfPosition > 0;
   }
   const Emitter& e = scene_.emitters[item.index];
@@ -64,16 +61,7 @@ bool LightSampler::sampleEmission(double uPick, float u1, float u2, float u3, fl
   if (item.kind == Kind::Point) {
     out.origin = e.position;
     out.deltaPosition = true;
-    if (e.spot) {
-      const float cosCut = std::cos(e.cutoffAngle);
-      const float cosTheta = 1 - u3 * (1 - cosCut), sinTheta = std::sqrt(std::max(0.0f, 1 - cosTheta * cosTheta));
-      const float phi = 2 * kPi * u4;
-      out.direction = Frame(e.axis).toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
-      out.pdfDirection = spotConePdf(e);
-    } else {
-      out.direction = squareToUniformSphere(u3, u4);
-      out.pdfDirection = kUniformSpherePdf;
-    }
+    sampleEmissionDirection(out.emitter, Vec3(0.0f), u3, u4, out.direction, out.pdfDirection);
     out.value = e.radiance * e.falloff(out.direction);
     out.pdfPosition = prob;
     return !isBlack(out.value);
@@ -102,6 +90,52 @@ bool LightSampler::sampleEmission(double uPick, float u1, float u2, float u3, fl
   return out.pdfPosition > 0 && !isBlack(out.value);
 }
 
+bool LightSampler::sampleEmissionDirection(int emitter, Vec3 normal, float u3, float u4, Vec3& direction,
+                                           float& pdf) const {
+  pdf = 0;
+  const Emitter& e = scene_.emitters[size_t(emitter)];
+  if (e.kind == EmitterKind::Area) {
+    const Vec3 local = squareToCosineHemisphere(u3, u4);
+    if (!(local.z > 0)) return false;
+    direction = Frame(normal).toWorld(local);
+    pdf = local.z * kInvPi;
+    return true;
+  }
+  if (e.kind != EmitterKind::Point) return false;
+  if (e.spot) {
+    const float cosCut = std::cos(e.cutoffAngle);
+    const float cosTheta = 1 - u3 * (1 - cosCut), sinTheta = std::sqrt(std::max(0.0f, 1 - cosTheta * cosTheta));
+    const float phi = 2 * kPi * u4;
+    direction = Frame(e.axis).toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
+    pdf = spotConePdf(e);
+  } else {
+    direction = squareToUniformSphere(u3, u4);
+    pdf = kUniformSpherePdf;
+  }
+  return true;
+}
+
+float LightSampler::emissionDirectionDensity(int emitter, Vec3 normal, Vec3 direction) const {
+  const Emitter& e = scene_.emitters[size_t(emitter)];
+  if (e.kind == EmitterKind::Area) return std::max(0.0f, dot(normal, direction)) * kInvPi;
+  if (e.kind != EmitterKind::Point) return 0.0f;
+  if (!e.spot) return kUniformSpherePdf;
+  return dot(direction, e.axis) >= std::cos(e.cutoffAngle) ? spotConePdf(e) : 0.0f;
+}
+
+float LightSampler::emissionPositionDensity(int emitter) const {
+  if (emitter < 0 || size_t(emitter) >= scene_.emitters.size()) return 0.0f;
+  switch (scene_.emitters[size_t(emitter)].kind) {
+    case EmitterKind::Area: {
+      // Every primitive of a uniformly bright emitter has the same pick probability per area.
+      const int64_t primitive = emitterPrimitive_[size_t(emitter)];
+      return primitive < 0 ? 0.0f : pickProbability(uint32_t(primitive)) / scene_.primitiveArea(uint32_t(primitive));
+    }
+    case EmitterKind::Point: return emitterProbability_[size_t(emitter)];
+    default: return 0.0f;
+  }
+}
+
 void LightSampler::emissionDensity(int emitter, uint32_t primitive, Vec3 normal, Vec3 direction, float& pdfPosition,
                                    float& pdfDirection) const {
   pdfPosition = pdfDirection = 0;
@@ -112,13 +146,12 @@ void LightSampler::emissionDensity(int emitter, uint32_t primitive, Vec3 normal,
       const float prob = pickProbability(primitive);
       if (prob == 0) return;
       pdfPosition = prob / scene_.primitiveArea(primitive);
-      pdfDirection = std::max(0.0f, dot(normal, direction)) * kInvPi;
+      pdfDirection = emissionDirectionDensity(emitter, normal, direction);
       return;
     }
     case EmitterKind::Point:
       pdfPosition = emitterProbability_[size_t(emitter)];
-      if (!e.spot) pdfDirection = kUniformSpherePdf;
-      else if (dot(direction, e.axis) >= std::cos(e.cutoffAngle)) pdfDirection = spotConePdf(e);
+      pdfDirection = emissionDirectionDensity(emitter, normal, direction);
       return;
     case EmitterKind::Directional:
       pdfPosition = emitterProbability_[size_t(emitter)];

@@ -82,6 +82,16 @@ class LightSampler {
   // emitting normal `normal`, or the point, directional or environment light `emitter`.
   void emissionDensity(int emitter, uint32_t primitive, Vec3 normal, Vec3 direction, float& pdfPosition,
                        float& pdfDirection) const;
+  // The direction part of sampleEmission for an area light's point with emitting normal
+  // `normal` (cosine-distributed) or point light `emitter` (its sphere or spot cone), with its
+  // solid-angle pdf; false for infinite lights or a degenerate sample.
+  bool sampleEmissionDirection(int emitter, Vec3 normal, float u3, float u4, Vec3& direction, float& pdf) const;
+  // sampleEmission's density of the light vertex of area or point emitter `emitter` (per unit
+  // area, the pick probability included; a point light's pick probability); 0 for the others.
+  float emissionPositionDensity(int emitter) const;
+  // sampleEmissionDirection's solid-angle density of `direction` from an area light's point
+  // with emitting normal `normal` or from point light `emitter`; 0 for the others.
+  float emissionDirectionDensity(int emitter, Vec3 normal, Vec3 direction) const;
   // Radius of the disk infinite lights emit from (the scene's bounding radius).
   float sceneRadius() const { return sceneRadius_; }
 

@@ -47,7 +47,8 @@
   C(color, "rgb(f) / lum(f) of the proposed path")                                                  \
   F(uint8_t, vertexCount, {}, "large step: vertices of the proposed path (perturbations keep the chain's)") \
   F(uint64_t, signature, {}, "large step: vertex kinds of the proposed path")                       \
-  F(float, largeWeight, {}, "large step: W(z) = lum(f) / q of the proposed path")
+  F(float, largeWeight, {}, "large step: W(z) = lum(f) / q of the proposed path")            \
+  F(float, ratio, {}, "bidirectional mutation: f(z) T(z -> y) / (f(y) T(y -> z)) on luminance")
 
 // What one chain step deposits: kDepositsPerStep rows per chain slot (the paper's rule fills
 // one, expected values two). Applied to the film in slot order, so the image does not depend

@@ -135,8 +135,11 @@ Acceptance largeStepAcceptance(const StepConfig& ctx, const AcceptSlot& s) {
   return a;
 }
 
-// Moves the chain to its large step's path: every vertex, its count and signature.
-void moveToLargeStep(const AcceptSlot& s, const Acceptance&) {
+}  // namespace
+
+// Moves the chain to a proposal that made its whole path (a large step, the bidirectional
+// mutation): every vertex, its count and signature, and W(z) when the proposal knows it.
+void moveToWholePath(const AcceptSlot& s, const Acceptance&) {
   ChainQueue& chains = s.chains;
   const ProposalQueue& proposals = s.proposals;
   const size_t i = s.i, base = i * kMaxChainVertices;
@@ -148,12 +151,14 @@ void moveToLargeStep(const AcceptSlot& s, const Acceptance&) {
   chains.fKind[i] = chains.tailKind[i] = uint8_t(MutationKind::None);  // f and the tail in no measure yet
 }
 
+namespace {
+
 bool appliesToChainPaths(const uint8_t*, int n) { return n >= 2 && n <= kMaxChainVertices; }
 int noTail(const uint8_t*, int n) { return n; }
 }  // namespace
 
 extern const Mutation kLargeStepMutation{MutationKind::LargeStep, MutationKind::LargeStep, appliesToChainPaths,
                                          /*startRange=*/nullptr, noTail, /*contribution=*/nullptr,
-                                         /*transitionRatio=*/nullptr, largeStepAcceptance, moveToLargeStep};
+                                         /*transitionRatio=*/nullptr, largeStepAcceptance, moveToWholePath};
 
 }  // namespace erpt

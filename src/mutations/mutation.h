@@ -103,6 +103,9 @@ struct Mutation {
 // tail cached per measure in the chain's columns; and the move to z (its regenerated vertices).
 Acceptance perturbationAcceptance(const StepConfig& ctx, const AcceptSlot& slot);
 void moveToPerturbation(const AcceptSlot& slot, const Acceptance& accepted);
+// The move of the units that make a whole path (the large step, the bidirectional mutation):
+// every vertex of the proposal, its count and signature (large_step.cpp).
+void moveToWholePath(const AcceptSlot& slot, const Acceptance& accepted);
 
 // Marks slot i's proposal rejected for `why` and disables its ray, row `ray` of `rays`
 // (mutate and trace stages; the trace stage's later bounces run in dense batches).

@@ -6,12 +6,14 @@
 
 namespace erpt {
 
-extern const Mutation kLensSquareMutation, kLensDiskMutation, kCausticMutation, kCausticVeachMutation, kLargeStepMutation;
+extern const Mutation kLensSquareMutation, kLensDiskMutation, kCausticMutation, kCausticVeachMutation, kLargeStepMutation,
+    kBidirectionalMutation;
 
 namespace {
 // Constant-initialized (addresses only), so a lookup is one indexed load.
 const Mutation* const kUnits[kMutationKindCount] = {nullptr, &kLensSquareMutation, &kLensDiskMutation, &kCausticMutation,
-                                                    &kCausticVeachMutation, &kLargeStepMutation};
+                                                    &kCausticVeachMutation, &kLargeStepMutation,
+                                                    &kBidirectionalMutation};
 }  // namespace
 
 const Mutation& mutationOf(MutationKind kind) {

@@ -37,6 +37,16 @@ float pdfAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo) {
   return bsdfPdf(b.material, b.colors, b.frame.toLocal(wi), b.frame.toLocal(wo));
 }
 
+bool sampleAt(const MeasureContext& c, PathVertex& v, Vec3 wi, float u1, float u2, float u3, Vec3& wo) {
+  if (v.material < 0) return false;
+  LocalBsdf b = bsdfAt(c, v);
+  BsdfSample s;
+  if (!bsdfSample(b.material, b.colors, b.frame.toLocal(wi), u1, u2, u3, s) || !(s.pdf > 0) || isBlack(s.weight)) return false;
+  v.kind = s.delta ? kSpecularVertex : kNonSpecularVertex;
+  wo = b.frame.toWorld(s.wo);
+  return true;
+}
+
 float etaAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo) {
   if (v.material < 0) return 1.0f;
   LocalBsdf b = bsdfAt(c, v);

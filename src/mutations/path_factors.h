@@ -18,6 +18,11 @@ float pdfAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo);
 // At a specular vertex: the Dirac lobe's value (radiance transport) and the probability that
 // BSDF sampling picks that lobe; false off every lobe.
 bool specularLobeAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo, Color& value, float& probability);
+// BSDF sampling at surface vertex v with wi the direction the walk arrived from (towards the
+// camera side for the eye's walk, the light side for the light's): the sampled direction wo,
+// and v.kind set to the lobe taken (specular for a Dirac lobe). False when the sample failed
+// or carries nothing. pdfAt / specularLobeAt give its density.
+bool sampleAt(const MeasureContext& c, PathVertex& v, Vec3 wi, float u1, float u2, float u3, Vec3& wo);
 // The relative IOR crossed from wi to wo at v (bsdfEta): what the path tracer's roulette saw.
 float etaAt(const MeasureContext& c, const PathVertex& v, Vec3 wi, Vec3 wo);
 // Radiance (area light, environment) or intensity (point light) a light vertex sends along w.

@@ -11,6 +11,10 @@ namespace erpt {
 
 struct LargeStepModel;
 
+struct VertexRange {
+  int min = 2, max = kMaxChainVertices;
+};
+
 // The user's options that the stages and units read (defaults: ErptSettings', declared there).
 struct StepSettings {
   MutationStrategy strategy = ErptSettings{}.strategy;
@@ -19,9 +23,11 @@ struct StepSettings {
   CausticAngle causticAngle = ErptSettings{}.causticAngle;
   FlowRule flow = ErptSettings{}.flow;  // DetailedBalance: chains never move
   bool expectedDeposit = ErptSettings{}.expectedDeposit;
+  float bidirectional = ErptSettings{}.bidirectionalMutation;  // P(bidirectional mutation) per step
 };
 inline StepSettings stepSettingsOf(const ErptSettings& s) {
-  return StepSettings{s.strategy, s.lensRadius, s.lensShape, s.causticAngle, s.flow, s.expectedDeposit};
+  return StepSettings{s.strategy, s.lensRadius, s.lensShape, s.causticAngle, s.flow, s.expectedDeposit,
+                      s.bidirectionalMutation};
 }
 
 struct StepConfig {
@@ -29,6 +35,9 @@ struct StepConfig {
   StepSettings settings;
   // MLT: the large step's model, which the accept stage needs for W(y) (null: no large steps).
   const LargeStepModel* largeSteps = nullptr;
+  // The path lengths the chains hold (vertices, eye and light included; the direct pass takes
+  // the shorter ones): the bidirectional mutation proposes no others.
+  VertexRange lengths = VertexRange{};
   // The mutation units the settings' lens shape and caustic angle choose for the two families.
   MutationKind lensKind() const { return settings.lensShape == LensShape::Disk ? MutationKind::LensDisk : MutationKind::Lens; }
   MutationKind causticKind() const {
@@ -39,10 +48,12 @@ struct StepConfig {
 // Random dimensions of one chain step (stream key = the chain's key, dimension =
 // step * kStepDims + use). Direction perturbations at vertex j use kDimPerturb + 2j, +1.
 // kDimComponent: the mixture component (PMC-ER's radius), after the last perturbation's.
-// kDimLargeStep: MLT's coin for a large step; a large step then draws its pixel, path length
+// kDimBidirectional: the coin for the bidirectional mutation, whose own numbers come from a
+// stream of their own (chain_bidirectional.cpp). kDimLargeStep: MLT's coin for a large step; a large step then draws its pixel, path length
 // and technique from kDimStart1, kDimStart2 and kDimPerturb (no perturbation uses them then).
 enum StepDim : uint32_t {
-  kDimStrategy = 0, kDimAccept, kDimStart1, kDimStart2, kDimPerturb, kDimLargeStep = 28, kDimComponent = 30, kStepDims = 32
+  kDimStrategy = 0, kDimAccept, kDimStart1, kDimStart2, kDimPerturb, kDimLargeStep = 28, kDimComponent = 30, kDimBidirectional = 31,
+  kStepDims = 32
 };
 static_assert(kDimPerturb + 2 * kMaxChainVertices <= kDimLargeStep, "step dimensions overlap");
 inline uint32_t stepDim(uint32_t step, uint32_t use) { return step * kStepDims + use; }

@@ -18,8 +18,17 @@ class ErptChooser final : public ProposalPolicy {
   void choose(const StepConfig& ctx, const ChainQueue& chains, ProposalQueue& proposals, RayQueue& rays,
               IndexRange range) const override {
     uint8_t kinds[kMaxChainVertices];
+    const double bidirectional = ctx.settings.bidirectional;
     for (size_t i = range.begin; i < range.end; ++i) {
       if (chains.stepsLeft[i] == 0) continue;
+      // The bidirectional mutation's coin, the same for every path (it cancels in the
+      // acceptance ratio); its walks run after the mutate stage (chain_bidirectional.cpp).
+      if (bidirectional > 0 && uniformDouble(chains.key[i], stepDim(chains.step[i], kDimBidirectional)) < bidirectional) {
+        proposals.mutation[i] = uint8_t(MutationKind::Bidirectional);
+        proposals.state[i] = kProposalBidirectional;
+        disableRay(rays, i);
+        continue;
+      }
       const int n = chains.vertexCount[i];
       unpackSignature(chains.signature[i], n, kinds);
       const MutationKind family = chooseMutation(ctx.settings.strategy, kinds, n,

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <atomic>
+#include <limits>
 #include <vector>
 
 #include "mutations/mutation.h"
@@ -15,6 +16,7 @@
 #include "models/exact_film.h"
 #include "models/film.h"
 #include "core/seeds.h"
+#include "models/surface.h"
 #include "tracer/tracer.h"
 
 namespace erpt {
@@ -114,6 +116,21 @@ void stageChainMutate(const StepConfig& ctx, const ChainQueue& chains, const Ver
 size_t stageChainTrace(const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                       ProposalQueue& proposals, VertexQueue& proposalVertices, RayQueue& rays, const HitQueue& hits,
                       RayQueue& shadowRays, IndexRange range, const uint32_t* slotOf = nullptr);
+
+// Sets row i of `shadowRays` to the connection from vertex `from` to point `to` (already
+// offset off its surface); `toInfinity` follows `dir` out of the scene instead.
+inline void setConnectionRay(RayQueue& shadowRays, size_t i, const PathVertex& from, Vec3 to, bool toInfinity, Vec3 dir) {
+  const Vec3 origin = offsetOrigin(from.p, from.ng, dir);
+  const float tfar = toInfinity ? std::numeric_limits<float>::infinity() : length(to - origin) * (1 - 1e-4f);
+  setRay(shadowRays, i, origin, dir, 0.0f, tfar);
+}
+
+// The bidirectional mutation's stage (chain_bidirectional.cpp), after the mutate stage: the
+// proposals in state kProposalBidirectional draw their plan, walk from both ends in dense
+// batches, connect, and leave complete with their acceptance ratio (proposals.ratio) or
+// rejected. Returns the rays traced.
+uint64_t stageChainBidirectional(const Tracer& tracer, const StepConfig& ctx, StepQueues& q, size_t grain,
+                                 StageTimes* times);
 
 // Connect stage: the occlusion stream for the connection rays of `range`, then rejects the
 // proposals whose connection is blocked. `slotOf` as for the trace stage: row k of

@@ -54,7 +54,8 @@ uint64_t ChainStep::propose(StepQueues& q) const {
     for (size_t i = r.begin; i < r.end; ++i) disableRay(q.shadowRays, i);
   }, times);
   const uint64_t ownRays = policy ? policy->startOwnProposals(ctx, q, times) : 0;
-  return ownRays + traceAndConnect(q);
+  const uint64_t bidirectionalRays = stageChainBidirectional(tracer, ctx, q, grain, times);
+  return ownRays + bidirectionalRays + traceAndConnect(q);
 }
 
 uint64_t ChainStep::traceAndConnect(StepQueues& q) const {

@@ -21,13 +21,6 @@ void complete(ProposalQueue& p, RayQueue& rays, size_t i, size_t ray) {
   disableRay(rays, ray);
 }
 
-// Sets the occlusion ray between two points; `toInfinity` follows `dir` out of the scene.
-void setConnection(RayQueue& shadowRays, size_t i, const PathVertex& from, Vec3 to, bool toInfinity, Vec3 dir) {
-  Vec3 origin = offsetOrigin(from.p, from.ng, dir);
-  float tfar = toInfinity ? std::numeric_limits<float>::infinity() : length(to - origin) * (1 - 1e-4f);
-  setRay(shadowRays, i, origin, dir, 0.0f, tfar);
-}
-
 }  // namespace
 
 size_t stageChainTrace(const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
@@ -141,13 +134,13 @@ size_t stageChainTrace(const StepConfig& ctx, const ChainQueue& chains, const Ve
       }
       proposals.filmX[i] = fx;
       proposals.filmY[i] = fy;
-      setConnection(shadowRays, i, z, eye, false, normalize(eye - z.p));
+      setConnectionRay(shadowRays, i, z, eye, false, normalize(eye - z.p));
     } else if (connectTo > 0) {
       // Connect to the current path's fixed vertex, which stays where it is.
       const PathVertex target = loadPathVertex(chainVertices, i * kMaxChainVertices + size_t(connectTo));
       const bool environment = target.kind == kEnvironmentVertex;
       const Vec3 d = environment ? -target.ns : normalize(target.p - z.p);
-      setConnection(shadowRays, i, z, environment ? Vec3(0.0f) : offsetOrigin(target.p, target.ng, -d), environment, d);
+      setConnectionRay(shadowRays, i, z, environment ? Vec3(0.0f) : offsetOrigin(target.p, target.ng, -d), environment, d);
     } else {
       rejectProposal(proposals, rays, i, kRejectKindChanged, k);  // the walk should have reached the light
       continue;

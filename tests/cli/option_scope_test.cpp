@@ -87,6 +87,7 @@ const OptionCase kOptions[] = {
     {"--bootstrap", "4", Effect::ChangesImage},
     {"--chains", "8", Effect::ChangesImage},
     {"--seeds", "bdpt", Effect::ChangesImage},
+    {"--bidir-mutation", "0.5", Effect::ChangesImage},
     {"--bdpt-s", "2", Effect::ChangesImage},
     {"--bdpt-t", "2", Effect::ChangesImage},
     {"--bdpt-weights", "none", Effect::ChangesImage},

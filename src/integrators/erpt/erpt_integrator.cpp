@@ -91,7 +91,11 @@ RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats
   FilmDensity density(setup.filter, s.width, s.height, o.seeds == SeedSampler::Bdpt);
   // The chains' random streams: a rank of a split render has its own (its counters start at 0 too).
   const uint64_t chainSeed = s.share.split() ? streamKey(s.seed, kRankStream, uint64_t(s.share.rank)) : s.seed;
-  ChainLanes::Config config{StepConfig{MeasureContext{scene, setup.lights, setup.camera, density}, stepSettingsOf(o)},
+  // The chains hold paths of 4 vertices or more when the direct pass renders the shorter ones.
+  const VertexRange lengths{o.directSamples > 0 ? 4 : 2,
+                            s.maxDepth >= 0 ? std::min(kMaxChainVertices, s.maxDepth + 1) : kMaxChainVertices};
+  ChainLanes::Config config{StepConfig{MeasureContext{scene, setup.lights, setup.camera, density}, stepSettingsOf(o),
+                                       nullptr, lengths},
                             chainSettingsOf(o), chainSeed, kErptLaneSlots, es.depositEnergy, s.stop,
                             setup.pool.threads()};
   ChainLanes chains(setup.tracer, config, setup.film, es, stats.stages);
@@ -182,7 +186,7 @@ IntegratorModule erptModule() {
                              "at most this many chains per seed; a seed that would start more starts this many, each "
                              "depositing more per step (same total)",
                              1, 1000000, [](auto& s) -> auto& { return erptOf(s).maxChainsPerSeed; }),
-               directSamplesOption(), seedsOption()};
+               directSamplesOption(), seedsOption(), bidirectionalMutationOption()};
   addOptions(m.options, perturbationOptions());
   addOptions(m.options, depositOptions());
   m.validate = [](const RenderSettings& s) { validateErptSettings(erptOf(s)); };

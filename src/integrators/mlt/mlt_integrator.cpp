@@ -185,7 +185,8 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   // Uniform lengths until the bootstrap knows better: the domain test only asks whether W > 0.
   const double noEnergy[kMaxChainVertices + 1] = {};
   model.setLengths(noEnergy);
-  const StepConfig ctx{MeasureContext{scene, setup.lights, setup.camera, density}, step, &model};
+  const StepConfig ctx{MeasureContext{scene, setup.lights, setup.camera, density}, step, &model,
+                       VertexRange{model.minVertices, model.maxVertices}};
   auto partial = [&] {
     stats.partial = true;
     stats.spp = 0;
@@ -328,7 +329,7 @@ IntegratorModule mltModule() {
   m.description = "Metropolis light transport on ERPT's mutations plus an independent large step (docs/mlt.md)";
   // No sample passes (no checkpoints), its own chain length and expected-value deposits, and
   // a bootstrap instead of ERPT's pilot.
-  m.options = {mutationsPerPixelOption(), directSamplesOption(), seedsOption(),
+  m.options = {mutationsPerPixelOption(), directSamplesOption(), seedsOption(), bidirectionalMutationOption(),
                realOption("large-step-prob",
                           "probability that a chain step is a large step, a fresh path-tracer sample through a "
                           "uniform pixel",

@@ -63,6 +63,16 @@ TEST(StatisticalErpt, DiskLensAndVeachCausticMatchPathTracerBlockByBlock) {
   expectErptMatchesPathTracerBlockByBlock(loadScene(test::sourceDir() + "/scenes/default/scene.xml"), 16, erpt, 3000);
 }
 
+// Veach's bidirectional mutation in ERPT's chains (half of the steps; docs/bidirectional-mutation.md):
+// on the default scene it deletes and regenerates subpaths through the glass and mirror
+// spheres, changes path lengths, replaces the light point and moves the film position. A
+// wrong density ratio moves energy between path lengths and regions.
+TEST(StatisticalErpt, BidirectionalMutationMatchesPathTracerBlockByBlock) {
+  ErptSettings erpt = everyPathByErpt(400);
+  erpt.bidirectionalMutation = 0.5f;
+  expectErptMatchesPathTracerBlockByBlock(loadScene(test::sourceDir() + "/scenes/default/scene.xml"), 16, erpt, 21000);
+}
+
 // Depth of field: the Cornell box through a thin lens (radius 0.3, focused 5.8 away on the
 // box's front: the back wall ~2.5 pixels out of focus at 64x64). Chains keep their seed's lens
 // point and the lens perturbation aims from it through the moved film position (measured:

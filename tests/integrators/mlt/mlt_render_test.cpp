@@ -33,24 +33,37 @@ using test::renderImage;
 
 Scene defaultScene() { return loadScene(test::sourceDir() + "/scenes/default/scene.xml"); }
 
-TEST(Mlt, SameImageForAnyThreadCount) {
+// One and two threads give the same image, with MLT's defaults and with the bidirectional
+// mutation (its own stage and random stream; image 45x33); returns the one-thread render's
+// statistics.
+RenderStats expectSameImageForAnyThreadCount(RenderSettings s) {
   const Scene scene = defaultScene();
+  s.threads = 1;
+  RenderStats one;
+  const RgbImage a = renderImage(scene, s, &one);
+  s.threads = 2;
+  test::expectBitIdentical(a, renderImage(scene, s));
+  return one;
+}
+
+TEST(Mlt, SameImageForAnyThreadCount) {
   RenderSettings s = mltSettings(16);
   s.width = s.height = 32;
   erptOf(s).directSamples = 2;
   mltOf(s).chains = 300;
   mltOf(s).bootstrapSpp = 4;
-  s.threads = 1;
-  RenderStats one;
-  const RgbImage a = renderImage(scene, s, &one);
-  s.threads = 2;
-  const RgbImage b = renderImage(scene, s);
-  test::expectBitIdentical(a, b);
+  const RenderStats one = expectSameImageForAnyThreadCount(s);
   // Both kinds of move happened, and the chains did all the work asked of them.
   EXPECT_GT(erptStatsOf(one).accepted[size_t(MutationKind::LargeStep)], 0u);
   EXPECT_GT(erptStatsOf(one).accepted[size_t(MutationKind::Lens)], 0u);
   EXPECT_EQ(mltStatsOf(one).chains, 300u);
   EXPECT_EQ(erptStatsOf(one).mutations, mltStatsOf(one).chains * mltStatsOf(one).chainLength);
+
+  s.width = 45;
+  s.height = 33;
+  erptOf(s).bidirectionalMutation = 0.5f;
+  const RenderStats bidirectional = expectSameImageForAnyThreadCount(s);
+  EXPECT_GT(erptStatsOf(bidirectional).accepted[size_t(MutationKind::Bidirectional)], 0u);
 }
 
 // The Cornell box at 128x128 (box filter) with MLT's defaults: channel means within 1% of
@@ -97,6 +110,29 @@ TEST(StatisticalMlt, LargeStepsAloneMatchPathTracerBlockByBlock) {
   mltOf(s).largeStepProbability = 1;
   mltOf(s).bootstrapSpp = 16;
   test::expectMatchesPathTracerBlockByBlock(test::cornellBox(), s, 24, 7100);
+}
+
+// Stationarity of Veach's bidirectional mutation alone: no large steps, no perturbations; the
+// chains start at the bootstrap's paths and move only by deleting and regenerating subpaths
+// (lengths, light points and film positions change), so the image is right only if its
+// acceptance ratio is (docs/bidirectional-mutation.md).
+TEST(StatisticalMlt, BidirectionalMutationAloneMatchesPathTracerBlockByBlock) {
+  RenderSettings s = mltSettings(128);
+  erptOf(s).directSamples = -1;
+  erptOf(s).bidirectionalMutation = 1;
+  mltOf(s).largeStepProbability = 0;
+  mltOf(s).bootstrapSpp = 16;
+  test::expectMatchesPathTracerBlockByBlock(test::cornellBox(), s, 16, 7400);
+}
+
+// The same through specular vertices: the default scene's glass and mirror spheres, with
+// MLT's large steps and perturbations beside the bidirectional mutation.
+TEST(StatisticalMlt, DefaultSceneWithBidirectionalMutationMatchesPathTracerBlockByBlock) {
+  RenderSettings s = mltSettings(128);
+  erptOf(s).directSamples = 8;
+  erptOf(s).bidirectionalMutation = 0.5f;
+  mltOf(s).bootstrapSpp = 16;
+  test::expectMatchesPathTracerBlockByBlock(defaultScene(), s, 16, 7500);
 }
 
 // Plastic walls (a Dirac coat over a diffuse base at one vertex): paths through the coat are
