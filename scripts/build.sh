@@ -17,16 +17,16 @@ if [ "${1:-}" = "--sanitize" ]; then
   # (src/cli/process_group.cpp) is tested in the Release suite; the split render itself here too
   # (Resume.SplitRenders*, in one process).
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DERPT_SANITIZE=ON -DERPT_BUILD_BENCHMARKS=OFF \
-    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DERPT_LIBFUZZER=ON -DERPT_MPI=OFF >/dev/null
+    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DERPT_LIBFUZZER=ON -DERPT_MPI=OFF -DERPT_PYTHON=OFF >/dev/null
 elif [ "${1:-}" = "--tsan" ]; then
   bash scripts/setup.sh clang libclang-rt-14-dev llvm
   dir=build-tsan
   cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Debug -DERPT_TSAN=ON -DERPT_BUILD_BENCHMARKS=OFF \
-    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DERPT_MPI=OFF >/dev/null
+    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DERPT_MPI=OFF -DERPT_PYTHON=OFF >/dev/null
   cmake --build "$dir" --target erpt_tests
   exit 0
 else
   dir=build
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release >/dev/null
+  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE="$(bash scripts/python.sh)" >/dev/null
 fi
 cmake --build "$dir"

@@ -10,6 +10,7 @@ packages=(
   libpugixml-dev libtinyobjloader-dev libcli11-dev zlib1g-dev
   libgtest-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
+  pybind11-dev python3-dev python3-numpy python3-matplotlib python3-pytest
   "$@"
 )
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs, builds as needed, and runs every test: the Release build, then the same suite
 # under AddressSanitizer + UndefinedBehaviorSanitizer, then the multi-threaded tests under
-# ThreadSanitizer (skip both sanitizer runs with --release-only).
+# ThreadSanitizer (skip both sanitizer runs with --release-only), then the Python module's tests
+# (pytest, tests/python).
 # Prints the time each step took at the end.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -36,3 +37,6 @@ if [ "${1:-}" != "--release-only" ]; then
   step "tsan tests" bash -c 'cd build-tsan && TSAN_OPTIONS="halt_on_error=1 ignore_noninstrumented_modules=1 suppressions=$PWD/../tests/tsan.supp" \
     ctest --output-on-failure -j2 -R "^(ErptStages|ErptLanes|ExactFilm|StageCompact|StageShadow|StageGenerate)\.|ThreadCount|^Resume\.Split"'
 fi
+# The Python module against the Release build (Debian's interpreter: numpy, matplotlib and
+# pytest are its packages).
+step "python tests" bash -c 'PYTHONPATH="$PWD/build/python" "$(bash scripts/python.sh)" -m pytest -q tests/python'

@@ -17,7 +17,8 @@
 #include "option_scope.h"
 #include "erpt/error.h"
 #include "erpt/integrators.h"
-#include "io/error_plots.h"
+#include "io/error_heatmap.h"
+#include "python_plot.h"
 #include "erpt/image_metrics.h"
 
 namespace erpt::cli {
@@ -30,7 +31,7 @@ struct CompareRow {
   int spp = 0, passes = 0;
   uint64_t mutations = 0;
   ImageComparison error;
-  ErrorSeries series;
+  std::vector<double> curveSeconds, curveMse, curveRelMse;  // the error after every pass
 };
 
 // One entry of --integrators: `NAME` or `NAME[OPTIONS]`, OPTIONS being render options that
@@ -135,9 +136,9 @@ std::string jsonReport(const CompareArgs& a, const RenderSettings& s, const std:
        << ", \"eff\": " << number(efficiency(r.seconds, r.error.mse))
        << ", \"eff_rel\": " << number(efficiency(r.seconds, r.error.relMse)) << ", \"nonfinite_pixels\": " << r.error.nonFinite
        << ",\n     \"curve\": [";
-    for (size_t k = 0; k < r.series.seconds.size(); ++k)
-      js << (k ? ", " : "") << "{\"seconds\": " << number(r.series.seconds[k]) << ", \"mse\": " << number(r.series.mse[k])
-         << ", \"rel_mse\": " << number(r.series.relMse[k]) << "}";
+    for (size_t k = 0; k < r.curveSeconds.size(); ++k)
+      js << (k ? ", " : "") << "{\"seconds\": " << number(r.curveSeconds[k]) << ", \"mse\": " << number(r.curveMse[k])
+         << ", \"rel_mse\": " << number(r.curveRelMse[k]) << "}";
     js << "]}";
   }
   js << "\n  ]\n}\n";
@@ -195,19 +196,19 @@ int runCompare(const CompareArgs& a) {
   for (const IntegratorEntry& entry : entries) {
     const std::string& name = entry.label;
     CompareRow row;
-    row.integrator = row.series.name = name;
+    row.integrator = name;
     RenderSettings s = entry.settings;
     s.timeBudget = a.time;
     s.onPass = [&](const RgbImage& img, double seconds, int) {
       const ImageComparison c = compareImages(img, reference);
-      row.series.seconds.push_back(seconds);
-      row.series.mse.push_back(c.mse);
-      row.series.relMse.push_back(c.relMse);
+      row.curveSeconds.push_back(seconds);
+      row.curveMse.push_back(c.mse);
+      row.curveRelMse.push_back(c.relMse);
     };
     if (!a.render.quiet) std::cerr << "compare: " << name << ", " << a.time << " s\n";
     RenderStats stats;
     const RgbImage image = render(scene, s, stats);
-    row.seconds = row.series.seconds.empty() ? stats.seconds : row.series.seconds.back();
+    row.seconds = row.curveSeconds.empty() ? stats.seconds : row.curveSeconds.back();
     row.spp = stats.spp;
     row.passes = stats.passes;
     row.mutations = erptStatsOf(stats).mutations;
@@ -220,17 +221,16 @@ int runCompare(const CompareArgs& a) {
   }
 
   const std::string table = markdownTable(rows);
-  std::vector<ErrorSeries> series;
-  for (const CompareRow& r : rows) series.push_back(r.series);
-  const std::string title = fs::path(a.render.scene).parent_path().filename().string() + " " +
-                            std::to_string(base.width) + "X" + std::to_string(base.height) + ", " + number(a.time) +
-                            " S EACH";
-  errorVsTimePlot(series, title).writePng((fs::path(a.outDir) / "compare.png").string());
   const std::string json = jsonReport(a, base, rows);
-  writeTextAtomic(fs::path(a.outDir) / "compare.json", json);
+  const fs::path jsonPath = fs::path(a.outDir) / "compare.json", plotPath = fs::path(a.outDir) / "compare.png";
+  writeTextAtomic(jsonPath, json);
   writeTextAtomic(fs::path(a.outDir) / "compare.md", "`" + a.commandLine + "`\n\n" + table);
+  // The plot is drawn by the Python package (python/erpt/plot.py, matplotlib).
+  const std::string plotted = plotComparison(jsonPath.string(), plotPath.string());
+  if (!plotted.empty()) std::cerr << "compare: no compare.png: " << plotted << "\n";
   std::cout << (a.json ? json : table);
-  std::cerr << "compare: wrote " << (fs::path(a.outDir) / "compare.{md,json,png}").string() << " and each integrator's image and error heat map\n";
+  std::cerr << "compare: wrote " << (fs::path(a.outDir) / (plotted.empty() ? "compare.{md,json,png}" : "compare.{md,json}")).string()
+            << " and each integrator's image and error heat map\n";
   return 0;
 }
 

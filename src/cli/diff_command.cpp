@@ -7,7 +7,7 @@
 
 #include "commands.h"
 #include "erpt/error.h"
-#include "io/error_plots.h"
+#include "io/error_heatmap.h"
 #include "erpt/image_metrics.h"
 
 namespace erpt::cli {

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include "commands.h"
+#include "erpt/scene_names.h"
 #include "erpt/scene_loader.h"
 
 namespace erpt::cli {
@@ -14,35 +15,6 @@ void addInfoCommand(CLI::App& app, InfoArgs& a) {
   cmd->add_flag("--tessellate-spheres", a.tessellateSpheres, "Load sphere shapes as triangle meshes");
 }
 
-namespace {
-const char* kindName(BsdfKind k) {
-  switch (k) {
-    case BsdfKind::Diffuse: return "diffuse";
-    case BsdfKind::Conductor: return "conductor";
-    case BsdfKind::RoughConductor: return "roughconductor";
-    case BsdfKind::Dielectric: return "dielectric";
-    case BsdfKind::ThinDielectric: return "thindielectric";
-    case BsdfKind::Plastic: return "plastic";
-    case BsdfKind::Blend: return "blendbsdf";
-    case BsdfKind::Ward: return "ward";
-    case BsdfKind::RoughPlastic: return "roughplastic";
-    case BsdfKind::RoughDielectric: return "roughdielectric";
-    case BsdfKind::Phong: return "phong";
-    case BsdfKind::Coating: return "coating";
-    case BsdfKind::RoughCoating: return "roughcoating";
-  }
-  return "?";
-}
-const char* emitterName(const Emitter& e) {
-  switch (e.kind) {
-    case EmitterKind::Area: return "area";
-    case EmitterKind::Point: return e.spot ? "spot" : "point";
-    case EmitterKind::Directional: return "directional";
-    case EmitterKind::Constant: return e.map ? "envmap" : "constant";
-  }
-  return "?";
-}
-}  // namespace
 
 int runInfo(const InfoArgs& a) {
   LoadOptions load;
@@ -69,12 +41,12 @@ int runInfo(const InfoArgs& a) {
   }
   std::cout << "lights:     " << scene.emitters.size() << "\n";
   for (const Emitter& e : scene.emitters)
-    std::cout << "  " << emitterName(e) << " (" << e.radiance.x << ", " << e.radiance.y << ", " << e.radiance.z << ")"
+    std::cout << "  " << emitterKindName(e) << " (" << e.radiance.x << ", " << e.radiance.y << ", " << e.radiance.z << ")"
               << (e.map ? " mean, " + std::to_string(e.map->width()) + "x" + std::to_string(e.map->height()) + " pixels" : "")
               << "\n";
   std::cout << "materials:  " << scene.materials.size() << "\n";
   for (const Material& m : scene.materials)
-    std::cout << "  " << m.name << ": " << kindName(m.kind) << (m.twoSided ? ", two-sided" : "") << "\n";
+    std::cout << "  " << m.name << ": " << bsdfKindName(m.kind) << (m.twoSided ? ", two-sided" : "") << "\n";
   std::cout << "textures:   " << scene.textures.size() << "\n"
             << "warnings:   " << scene.warnings.messages.size() << "\n";
   for (const std::string& w : scene.warnings.messages) std::cout << "  " << w << "\n";

@@ -8,6 +8,7 @@
 #include "erpt/error.h"
 #include "erpt/integrators.h"
 #include "erpt/render.h"
+#include "erpt/render_request.h"
 #include "erpt/scene_loader.h"
 #include "option_scope.h"
 #include "pass_writer.h"
@@ -142,39 +143,26 @@ Scene loadSceneFor(const RenderArgs& a) {
 }
 
 RenderSettings settingsFromArgs(const RenderArgs& a, const Scene& scene) {
-  if (a.maxDepth == 0) throw UsageError("--max-depth must be -1 (unbounded) or at least 1");
-  RenderSettings s;
-  const bool sceneIntegratorKnown = findIntegrator(scene.integrator.type) != nullptr;
-  s.integrator = !a.integrator.empty() ? a.integrator : sceneIntegratorKnown ? scene.integrator.type : defaultIntegrator().name;
-  s.width = a.width;
-  s.height = a.height;
-  s.spp = a.spp;
-  s.maxDepth = a.maxDepth;
-  s.seed = a.seed;
-  s.threads = a.threads;
-  s.timeBudget = a.time;
+  RenderRequest r;
+  r.integrator = a.integrator;
+  r.spp = a.spp;
+  r.width = a.width;
+  r.height = a.height;
+  r.threads = a.threads;
+  r.maxDepth = a.maxDepth;
+  r.seed = a.seed;
+  r.time = a.time;
+  r.filter = a.filter;
+  r.given = a.given;
   const auto given = [&](const std::string& option) { return std::find(a.given.begin(), a.given.end(), option) != a.given.end(); };
-  if (const IntegratorModule* integrator = findIntegrator(s.integrator)) {  // an unknown one is refused by the caller
-    std::vector<std::pair<std::string, std::string>> options;
-    for (const OptionSpec& o : integrator->options)
-      if (given(o.flag())) options.emplace_back(o.name, o.kind == OptionKind::Flag ? "true" : a.integratorOptions.at(o.name));
-    if (!integrator->sppOption.empty() && given("--spp")) {
-      if (given("--" + integrator->sppOption))
-        throw UsageError("for " + integrator->name + " --spp is the " + integrator->sppOption +
-                         " (as Mitsuba's sample count): give --spp or --" + integrator->sppOption + ", not both");
-      options.emplace_back(integrator->sppOption, std::to_string(a.spp));
-      s.spp = 1;  // its render is one pass; time-budgeted passes scale the option by their spp
-    }
-    applyOptions(*integrator, options, s);
-  }
+  for (const IntegratorModule& m : integratorModules())
+    for (const OptionSpec& o : m.options)
+      if (given(o.flag()) && std::none_of(r.options.begin(), r.options.end(), [&](const auto& p) { return p.first == o.name; }))
+        r.options.emplace_back(o.name, o.kind == OptionKind::Flag ? "true" : a.integratorOptions.at(o.name));
   if (given("--checkpoint-every") && a.checkpoint.empty()) throw UsageError("--checkpoint-every needs --checkpoint FILE");
-  if (!a.filter.empty()) {
-    s.filterSet = true;
-    s.filter = a.filter == "box" ? FilterKind::Box : a.filter == "tent" ? FilterKind::Tent : FilterKind::Gaussian;
-  }
-  if (a.integrator.empty() && !sceneIntegratorKnown && !a.quiet)
-    std::cerr << "note: the scene asks for integrator '" << scene.integrator.type << "'; rendering with '"
-              << s.integrator << "'\n";
+  std::string note;
+  RenderSettings s = settingsFor(scene, r, &note);
+  if (!note.empty() && !a.quiet) std::cerr << note << "\n";
   return s;
 }
 
@@ -190,8 +178,7 @@ int runRender(const RenderArgs& given) {
   if (!fs::is_directory(dir)) throw UsageError("output directory '" + dir.string() + "' does not exist");
   if (!a.checkpoint.empty() && a.time > 0) throw UsageError("--checkpoint needs a fixed --spp, not --time");
   Scene scene = loadSceneFor(a);
-  RenderSettings s = settingsFromArgs(a, scene);
-  integratorNamed(s.integrator);  // an unknown name first, before its options are judged
+  RenderSettings s = settingsFromArgs(a, scene);  // an unknown integrator first, before its options are judged
   checkOptionScope(a.given, {s.integrator});
   const bool longRender = !a.checkpoint.empty() || a.writePartial > 0 || a.resumeFrom || !a.display.empty();
   if (longRender && a.time > 0) throw UsageError("--write-partial and --display need a fixed --spp, not --time");

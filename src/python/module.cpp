@@ -1,0 +1,377 @@
+// The compiled part of the Python package `erpt` (python/erpt/__init__.py re-exports it):
+// scenes, renders, images and errors over the same integrator registry and option tables as
+// the CLI. A render's settings come from erpt/render_request.h as the CLI's do, so the image
+// is bit-identical to the CLI's for the same scene, seed and options.
+//
+// A render runs on a thread of its own while the calling thread waits with the GIL released
+// (other Python threads run); every 50 ms the caller takes the GIL back to deliver progress
+// and to check for signals: Ctrl-C (KeyboardInterrupt) stops the render between its passes and
+// returns the passes done, as the CLI does.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <filesystem>
+#include <mutex>
+#include <thread>
+
+#include "erpt/error.h"
+#include "erpt/erpt_settings.h"
+#include "erpt/image_io.h"
+#include "erpt/image_metrics.h"
+#include "erpt/integrators.h"
+#include "erpt/render.h"
+#include "erpt/render_request.h"
+#include "erpt/scene_loader.h"
+#include "erpt/scene_names.h"
+
+namespace py = pybind11;
+
+namespace erpt {
+namespace {
+
+using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+
+// erpt.Error: every InputError and UsageError, with the same one-line text as the CLI's.
+PyObject* errorType = nullptr;
+
+struct PyScene {
+  std::shared_ptr<const Scene> scene;
+  std::string path;
+};
+
+struct PyResult {
+  RgbImage image;
+  py::dict stats;
+  py::list curve;  // with a reference: {seconds, mse, rel_mse} after every pass
+};
+
+py::array_t<float> toArray(const RgbImage& image) {
+  py::array_t<float> out({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(3)});
+  float* data = out.mutable_data();
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    data[3 * i] = image.pixels[i].x;
+    data[3 * i + 1] = image.pixels[i].y;
+    data[3 * i + 2] = image.pixels[i].z;
+  }
+  return out;
+}
+
+// An image from a (height, width, 3) array or a file path.
+RgbImage toImage(const py::object& source) {
+  if (py::isinstance<py::str>(source) || py::isinstance(source, py::module_::import("pathlib").attr("PurePath")))
+    return readImage(py::str(source).cast<std::string>());
+  const FloatArray a = FloatArray::ensure(source);
+  if (!a || a.ndim() != 3 || a.shape(2) != 3)
+    throw UsageError("an image must be a path or an array of shape (height, width, 3)");
+  RgbImage image;
+  image.height = int(a.shape(0));
+  image.width = int(a.shape(1));
+  image.pixels.resize(size_t(image.width) * size_t(image.height));
+  const float* data = a.data();
+  for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = Color(data[3 * i], data[3 * i + 1], data[3 * i + 2]);
+  return image;
+}
+
+// Keyword argument value -> option text as a command line gives it.
+std::string optionText(const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    std::string out;
+    for (const py::handle& v : value) out += (out.empty() ? "" : ",") + optionText(v);
+    return out;
+  }
+  if (py::isinstance<py::float_>(value)) return py::repr(value).cast<std::string>();
+  return py::str(value).cast<std::string>();
+}
+
+// The options every integrator takes, as keyword arguments.
+RenderRequest requestOf(const std::string& integrator, const py::kwargs& options) {
+  RenderRequest r;
+  r.integrator = integrator;
+  for (const auto& [key, value] : options) {
+    const std::string name = key.cast<std::string>();
+    std::string flag = name;
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    flag = "--" + flag;
+    if (name == "spp") r.spp = value.cast<int>();
+    else if (name == "width") r.width = value.cast<int>();
+    else if (name == "height") r.height = value.cast<int>();
+    else if (name == "threads") r.threads = value.cast<int>();
+    else if (name == "seed") r.seed = value.cast<uint64_t>();
+    else if (name == "max_depth") r.maxDepth = value.cast<int>();
+    else if (name == "time") r.time = value.cast<double>();
+    else if (name == "filter") r.filter = value.cast<std::string>();
+    else if (std::find(kSamplePassOptions.begin(), kSamplePassOptions.end(), flag) != kSamplePassOptions.end())
+      throw UsageError("'" + name + "' is an option of the command line only (erpt render " + flag + ")");
+    else if (integratorsUsing(flag).empty())
+      throw UsageError("unknown option '" + name + "' (the integrators' options are those of `erpt render --help`, "
+                       "dashes as underscores)");
+    else if (py::isinstance<py::bool_>(value) && !value.cast<bool>())
+      continue;  // a flag set to False: not given
+    else
+      r.options.emplace_back(flag.substr(2), optionText(value));
+    r.given.push_back(flag);
+  }
+  if (r.spp < 0 || r.width < 0 || r.height < 0 || r.threads < 0 || !(r.time >= 0))
+    throw UsageError("spp, width, height, threads and time must not be negative");
+  return r;
+}
+
+py::dict statsOf(const RenderSettings& s, const RenderStats& stats) {
+  py::dict d;
+  d["integrator"] = s.integrator;
+  d["width"] = s.width;
+  d["height"] = s.height;
+  d["spp"] = stats.spp;
+  d["passes"] = stats.passes;
+  d["seconds"] = stats.seconds;
+  d["samples"] = stats.samples;
+  d["rays"] = stats.rays;
+  d["rays_per_second"] = stats.seconds > 0 ? double(stats.rays) / stats.seconds : 0.0;
+  d["invalid_samples"] = stats.invalidSamples;
+  d["refused_rays"] = stats.refusedRays;
+  d["partial"] = stats.partial;
+  py::dict stages;
+  for (const auto& [name, seconds] : stats.stages.all()) stages[py::str(name)] = seconds;
+  d["stage_seconds"] = stages;
+  if (s.integrator == "erpt" || s.integrator == "pmc-er" || s.integrator == "mlt") {
+    const ErptStats& e = erptStatsOf(const_cast<RenderStats&>(stats));
+    d["chains"] = e.chains;
+    d["mutations"] = e.mutations;
+    py::dict proposed, accepted;
+    for (int k = 1; k < kMutationKindCount; ++k) {
+      if (e.proposed[k] == 0) continue;
+      proposed[mutationName(MutationKind(k))] = e.proposed[k];
+      accepted[mutationName(MutationKind(k))] = e.accepted[k];
+    }
+    d["proposed"] = proposed;
+    d["accepted"] = accepted;
+  }
+  return d;
+}
+
+// Renders on a worker thread; the caller waits without the GIL and handles progress and
+// signals between waits.
+PyResult renderScene(const PyScene& scene, const std::string& integrator, const py::object& progress,
+                     const py::object& reference, const py::kwargs& options) {
+  const RenderRequest request = requestOf(integrator, options);
+  RenderSettings s = settingsFor(*scene.scene, request);
+  checkOptionScope(request.given, {s.integrator});
+  PyResult result;
+  RgbImage referenceImage;
+  std::vector<std::array<double, 3>> curve;
+  if (!reference.is_none()) {
+    const RenderSettings resolved = resolveSettings(*scene.scene, s);
+    referenceImage = matchReferenceSize(toImage(reference), resolved.width, resolved.height);
+    s.onPass = [&](const RgbImage& image, double seconds, int) {
+      const ImageComparison c = compareImages(image, referenceImage);
+      curve.push_back({seconds, c.mse, c.relMse});
+    };
+  }
+  std::atomic<bool> stop{false};
+  std::atomic<double> fraction{-1.0};
+  s.stop = &stop;
+  s.progress = [&](double f) { fraction = f; };
+  RenderStats stats;
+  RgbImage image;
+  std::exception_ptr failure;
+  std::mutex m;
+  std::condition_variable cv;
+  bool done = false;
+  std::thread worker([&] {
+    try {
+      image = render(*scene.scene, s, stats);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+    std::lock_guard<std::mutex> lock(m);
+    done = true;
+    cv.notify_all();
+  });
+  bool interrupted = false;
+  double reported = -1;
+  std::exception_ptr callbackFailure;
+  for (;;) {
+    {
+      py::gil_scoped_release release;
+      std::unique_lock<std::mutex> lock(m);
+      cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; });
+      if (done) break;
+    }
+    if (PyErr_CheckSignals() != 0) {  // KeyboardInterrupt (or another signal handler raised)
+      PyErr_Clear();
+      interrupted = true;
+      stop = true;
+    }
+    const double f = fraction;
+    if (!progress.is_none() && f != reported && !callbackFailure) {
+      reported = f;
+      try {
+        progress(f);
+      } catch (...) {
+        callbackFailure = std::current_exception();
+        stop = true;
+      }
+    }
+  }
+  worker.join();
+  if (failure) std::rethrow_exception(failure);
+  if (callbackFailure) std::rethrow_exception(callbackFailure);
+  if (interrupted && stats.spp == 0) {  // stopped before a pass completed: nothing to return
+    PyErr_SetNone(PyExc_KeyboardInterrupt);
+    throw py::error_already_set();
+  }
+  const RenderSettings resolved = resolveSettings(*scene.scene, s);
+  result.image = std::move(image);
+  if (stats.partial)
+    result.image.metadata.emplace_back("erpt:partial", std::to_string(stats.spp) + " of " + std::to_string(resolved.spp) +
+                                                           " samples per pixel (stopped by an interrupt)");
+  result.stats = statsOf(resolved, stats);
+  for (const auto& p : curve) {
+    py::dict point;
+    point["seconds"] = p[0];
+    point["mse"] = p[1];
+    point["rel_mse"] = p[2];
+    result.curve.append(point);
+  }
+  return result;
+}
+
+void writeResult(const PyResult& r, const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  if (ext == ".png") return writePngAtomic(path, r.image);
+  writeImageAtomic(path, r.image);
+  if (ext == ".exr") writePngAtomic(std::filesystem::path(path).replace_extension(".png").string(), r.image);
+}
+
+py::dict diffImages(const py::object& image, const py::object& reference) {
+  const RgbImage a = toImage(image), b = toImage(reference);
+  const ImageComparison c = compareImages(a, b);
+  auto ratio = [](float x, float y) { return y != 0 ? double(x) / double(y) : 0.0; };
+  py::dict d;
+  d["mse"] = c.mse;
+  d["rel_mse"] = c.relMse;
+  d["mean"] = py::make_tuple(c.mean.x, c.mean.y, c.mean.z);
+  d["reference_mean"] = py::make_tuple(c.referenceMean.x, c.referenceMean.y, c.referenceMean.z);
+  d["mean_ratio"] = py::make_tuple(ratio(c.mean.x, c.referenceMean.x), ratio(c.mean.y, c.referenceMean.y),
+                                   ratio(c.mean.z, c.referenceMean.z));
+  d["nonfinite_pixels"] = c.nonFinite;
+  d["black_pixels"] = c.black;
+  return d;
+}
+
+py::dict sceneInfo(const PyScene& ps) {
+  const Scene& scene = *ps.scene;
+  py::dict d;
+  d["path"] = ps.path;
+  d["film"] = py::make_tuple(scene.film.width, scene.film.height);
+  d["spp"] = scene.integrator.spp;
+  d["integrator"] = scene.integrator.type;
+  d["max_depth"] = scene.integrator.maxDepth;
+  d["triangles"] = scene.mesh.triangleCount();
+  d["spheres"] = scene.spheres.count();
+  py::list shapes, lights, materials, warnings;
+  for (const ShapeInfo& s : scene.shapes) {
+    py::dict shape;
+    shape["type"] = s.type;
+    shape["id"] = s.id;
+    shape["triangles"] = s.triangleCount;
+    shape["exact_sphere"] = s.sphere >= 0;
+    shapes.append(shape);
+  }
+  for (const Emitter& e : scene.emitters) {
+    py::dict light;
+    light["type"] = emitterKindName(e);
+    light["radiance"] = py::make_tuple(e.radiance.x, e.radiance.y, e.radiance.z);
+    lights.append(light);
+  }
+  for (const Material& m : scene.materials) {
+    py::dict material;
+    material["name"] = m.name;
+    material["type"] = bsdfKindName(m.kind);
+    material["two_sided"] = m.twoSided;
+    materials.append(material);
+  }
+  for (const std::string& w : scene.warnings.messages) warnings.append(w);
+  d["shapes"] = shapes;
+  d["lights"] = lights;
+  d["materials"] = materials;
+  d["warnings"] = warnings;
+  return d;
+}
+
+}  // namespace
+}  // namespace erpt
+
+PYBIND11_MODULE(_erpt, m) {
+  using namespace erpt;
+  m.doc() = "Energy Redistribution Path Tracing: scenes, renders and images (see help(erpt))";
+  errorType = PyErr_NewException("erpt.Error", PyExc_RuntimeError, nullptr);
+  m.attr("Error") = py::handle(errorType);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      PyErr_SetString(errorType, e.what());
+    } catch (const UsageError& e) {
+      PyErr_SetString(errorType, e.what());
+    }
+  });
+
+  py::class_<PyScene>(m, "Scene", "A loaded Mitsuba scene (erpt.load_scene)")
+      .def("info", &sceneInfo, "The scene's shapes, triangles, lights, materials and loader warnings, as a dict")
+      .def_property_readonly("path", [](const PyScene& s) { return s.path; })
+      .def("__repr__", [](const PyScene& s) { return "<erpt.Scene '" + s.path + "'>"; });
+
+  py::class_<PyResult>(m, "Result", "A render: its linear image, statistics and (with a reference) error curve")
+      .def_property_readonly("image", [](const PyResult& r) { return toArray(r.image); },
+                             "The linear image, a float32 array of shape (height, width, 3)")
+      .def_readonly("stats", &PyResult::stats, "The render's statistics (what the CLI summarises), as numbers")
+      .def_readonly("curve", &PyResult::curve,
+                    "With render(..., reference=...): {seconds, mse, rel_mse} after every pass of a time-budgeted render")
+      .def("write", &writeResult, py::arg("path"),
+           "Writes the image as the CLI does: .exr (linear, with a tone-mapped .png beside it), .png (tone-mapped), or "
+           "any format OpenImageIO writes");
+
+  m.def(
+      "load_scene",
+      [](const std::string& path, const py::object& defaults) {
+        LoadOptions load;
+        if (!defaults.is_none())
+          for (const auto& [k, v] : defaults.cast<py::dict>()) load.defines[k.cast<std::string>()] = optionText(v);
+        PyScene s;
+        s.path = path;
+        {
+          py::gil_scoped_release release;
+          s.scene = std::make_shared<const Scene>(loadScene(path, load));
+        }
+        return s;
+      },
+      py::arg("path"), py::arg("defaults") = py::none(),
+      "Loads a Mitsuba 0.6 or 3 XML scene; `defaults` overrides its <default> values as the CLI's -D name=value");
+  m.def("render", &renderScene, py::arg("scene"), py::arg("integrator") = "path", py::kw_only(),
+        py::arg("progress") = py::none(), py::arg("reference") = py::none(),
+        "Renders `scene` with `integrator`; every render option of the CLI is a keyword argument (dashes as "
+        "underscores: spp, width, height, seed, threads, time, max_depth, filter, mutations_per_pixel, ...). "
+        "`progress(fraction)` is called as the render goes; `reference` (an image or path) records the error after "
+        "every pass of a time-budgeted render in Result.curve. Ctrl-C stops the render between passes and returns "
+        "what is done (stats['partial']).");
+  m.def("diff", &diffImages, py::arg("image"), py::arg("reference"),
+        "Error metrics of an image against a reference (arrays or paths; a reference an integer multiple of the "
+        "image's size is box-downsampled): mse, rel_mse, mean, reference_mean, mean_ratio, nonfinite_pixels, "
+        "black_pixels");
+  m.def("read_image", [](const std::string& path) { return toArray(readImage(path)); }, py::arg("path"),
+        "Reads an image (EXR, PNG, any format OpenImageIO reads) as a linear float32 array (height, width, 3)");
+  m.def("integrators", [] {
+    std::vector<std::string> names;
+    for (const IntegratorModule& i : integratorModules()) names.push_back(i.name);
+    return names;
+  }, "The integrators' names");
+}

@@ -1,0 +1,209 @@
+"""The Python module (python/erpt, src/python/module.cpp): its API, bit-identity with the CLI,
+errors, the GIL released during renders, interrupts, progress, comparisons and plots.
+
+Run by scripts/test.sh after the C++ suites:
+    PYTHONPATH=build/python python3 -m pytest tests/python
+"""
+
+import _thread
+import json
+import os
+import pathlib
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import erpt
+import erpt.plot
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+BUILD = pathlib.Path(os.environ.get("ERPT_BUILD_DIR", ROOT / "build"))
+CLI = BUILD / "erpt"
+DEFAULT_SCENE = ROOT / "scenes" / "default" / "scene.xml"
+
+
+@pytest.fixture(scope="module")
+def scene():
+    return erpt.load_scene(str(DEFAULT_SCENE))
+
+
+def cli(*args):
+    return subprocess.run([str(CLI), *map(str, args)], capture_output=True, text=True)
+
+
+def test_load_scene_and_info(scene):
+    info = scene.info()
+    assert info["triangles"] > 0
+    assert len(info["shapes"]) > 0 and all("type" in s for s in info["shapes"])
+    assert len(info["lights"]) >= 1
+    assert {m["type"] for m in info["materials"]} >= {"diffuse"}
+    assert isinstance(info["warnings"], list)
+    assert info["film"] == (512, 512)
+    # Scene defaults, as the CLI's -D.
+    small = erpt.load_scene(str(DEFAULT_SCENE), defaults={"res": 40, "spp": 3})
+    assert small.info()["film"] == (40, 40) and small.info()["spp"] == 3
+
+
+def test_render_gives_an_image_and_statistics(scene):
+    result = erpt.render(scene, "path", spp=2, width=33, height=21, seed=4)
+    image = result.image
+    assert image.dtype == np.float32 and image.shape == (21, 33, 3)
+    assert np.isfinite(image).all() and image.mean() > 0
+    stats = result.stats
+    assert stats["spp"] == 2 and stats["samples"] == 33 * 21 * 2 and stats["rays"] > 0
+    assert stats["partial"] is False and stats["integrator"] == "path"
+    assert "erpt" in erpt.integrators() and "bdpt" in erpt.integrators()
+
+
+@pytest.mark.parametrize("integrator,options,flags", [
+    ("path", {"spp": 3}, ["--spp", "3"]),
+    ("erpt", {"spp": 2, "mutations_per_pixel": 8, "lens_radius": 3.5}, ["--spp", "2", "--mutations-per-pixel", "8", "--lens-radius", "3.5"]),
+    ("mlt", {"spp": 4, "bidir_mutation": 0.3}, ["--spp", "4", "--bidir-mutation", "0.3"]),
+    ("bdpt", {"spp": 2, "filter": "tent"}, ["--spp", "2", "--filter", "tent"]),
+])
+def test_render_is_bit_identical_to_the_cli(scene, tmp_path, integrator, options, flags):
+    out = tmp_path / "cli.exr"
+    r = cli("render", "-q", DEFAULT_SCENE, "--integrator", integrator, "--width", 37, "--height", 29, "--seed", 7,
+            *flags, "-o", out)
+    assert r.returncode == 0, r.stderr
+    result = erpt.render(scene, integrator, width=37, height=29, seed=7, **options)
+    assert np.array_equal(result.image, erpt.read_image(str(out)))
+    # Result.write writes what the CLI writes.
+    result.write(str(tmp_path / "py.exr"))
+    assert np.array_equal(erpt.read_image(str(tmp_path / "py.exr")), result.image)
+    assert (tmp_path / "py.png").exists()
+
+
+def test_errors_raise_erpt_error_with_the_cli_text(scene, tmp_path):
+    assert issubclass(erpt.Error, RuntimeError)
+    with pytest.raises(erpt.Error, match=r"no-such-scene\.xml: error: "):
+        erpt.load_scene(str(tmp_path / "no-such-scene.xml"))
+    bad = tmp_path / "bad.xml"
+    bad.write_text('<scene version="0.6.0">\n  <shape type="obj">\n    <string name="filename" value="x.obj"/>\n</scene>\n')
+    with pytest.raises(erpt.Error, match=r"bad\.xml:\d+: error: "):
+        erpt.load_scene(str(bad))
+    with pytest.raises(erpt.Error, match=r"--lens-radius does not apply to --integrator path"):
+        erpt.render(scene, "path", spp=1, width=8, height=8, lens_radius=2)
+    with pytest.raises(erpt.Error, match=r"--chain-length must be an integer in \[1, "):
+        erpt.render(scene, "erpt", spp=1, width=8, height=8, chain_length=0)
+    with pytest.raises(erpt.Error, match=r"--mutation-strategy must be"):
+        erpt.render(scene, "erpt", spp=1, width=8, height=8, mutation_strategy="sideways")
+    with pytest.raises(erpt.Error, match=r"'checkpoint' is an option of the command line only"):
+        erpt.render(scene, "path", spp=1, checkpoint="x.ckpt")
+    with pytest.raises(erpt.Error, match=r"unknown option 'colour'"):
+        erpt.render(scene, "path", spp=1, colour=3)
+    with pytest.raises(erpt.Error, match=r"unknown integrator|integrator 'nope'"):
+        erpt.render(scene, "nope", spp=1)
+    with pytest.raises(erpt.Error, match=r"give --spp or --mutations-per-pixel, not both"):
+        erpt.render(scene, "mlt", spp=1, mutations_per_pixel=4)
+    with pytest.raises(erpt.Error, match=r"shape \(height, width, 3\)"):
+        erpt.diff(np.zeros((4, 4)), np.zeros((4, 4, 3)))
+
+
+def test_the_gil_is_released_while_rendering(scene):
+    ticks = 0
+    running = True
+
+    def count():
+        nonlocal ticks
+        while running:
+            ticks += 1
+            time.sleep(0.001)
+
+    t = threading.Thread(target=count)
+    t.start()
+    start = time.perf_counter()
+    erpt.render(scene, "path", spp=24, width=96, height=96)
+    seconds = time.perf_counter() - start
+    running = False
+    t.join()
+    # A thread starved of the GIL would tick about once; one that runs ticks every few ms.
+    assert seconds > 0.1
+    assert ticks > 10 * seconds
+
+
+def test_keyboard_interrupt_stops_between_passes_and_returns_what_is_done(scene):
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    timer.start()
+    start = time.perf_counter()
+    result = erpt.render(scene, "path", spp=4096, width=128, height=128)
+    seconds = time.perf_counter() - start
+    timer.cancel()
+    assert result.stats["partial"] is True
+    assert 0 < result.stats["spp"] < 4096
+    assert np.isfinite(result.image).all() and result.image.mean() > 0
+    assert seconds < 30
+
+
+def test_progress_is_reported_and_a_failing_callback_stops_the_render(scene):
+    seen = []
+    erpt.render(scene, "path", spp=64, width=64, height=64, progress=seen.append)
+    assert seen and all(0 <= f <= 1 for f in seen) and seen == sorted(seen)
+
+    def fail(fraction):
+        raise ValueError("stop here")
+
+    with pytest.raises(ValueError, match="stop here"):
+        erpt.render(scene, "path", spp=4096, width=64, height=64, progress=fail)
+
+
+def test_diff_takes_arrays_and_paths(scene, tmp_path):
+    a = erpt.render(scene, "path", spp=1, width=16, height=16, seed=1)
+    b = erpt.render(scene, "path", spp=1, width=16, height=16, seed=2)
+    same = erpt.diff(a.image, a.image)
+    assert same["mse"] == 0 and same["rel_mse"] == 0 and same["nonfinite_pixels"] == 0
+    assert same["mean_ratio"] == pytest.approx((1, 1, 1))
+    b.write(str(tmp_path / "b.exr"))
+    d = erpt.diff(a.image, str(tmp_path / "b.exr"))
+    expected = np.mean((a.image.astype(np.float64) - b.image) ** 2)
+    assert d["mse"] == pytest.approx(expected, rel=1e-5)
+    nan = a.image.copy()
+    nan[0, 0, 0] = np.nan
+    assert erpt.diff(nan, a.image)["nonfinite_pixels"] == 1
+
+
+def test_compare_and_its_plot(scene, tmp_path):
+    reference = erpt.render(scene, "path", spp=32, width=16, height=16, seed=9).image
+    rows = erpt.compare(scene, reference, integrators=["path", ("erpt", {"mutations_per_pixel": 8})], time=0.3,
+                        width=16, height=16, spp=1)
+    assert [r["integrator"] for r in rows] == ["path", "erpt[--mutations-per-pixel 8]"]
+    for r in rows:
+        assert r["curve"] and r["rel_mse"] > 0 and r["eff_rel"] > 0 and r["spp"] >= 1
+        assert all(p["seconds"] > 0 for p in r["curve"])
+    erpt.plot.plot_compare(rows, str(tmp_path / "rows.png"), title="test")
+    assert erpt.read_image(str(tmp_path / "rows.png")).shape[1] >= 500
+
+
+def test_cli_compare_draws_its_plot_through_python(tmp_path):
+    reference = tmp_path / "ref.exr"
+    assert cli("render", "-q", DEFAULT_SCENE, "--width", 16, "--height", 16, "--spp", 16, "-o", reference).returncode == 0
+    out = tmp_path / "cmp"
+    r = cli("compare", "-q", DEFAULT_SCENE, "--width", 16, "--height", 16, "--spp", 1, "--reference", reference,
+            "--time", 0.2, "--integrators", "path,direct", "--out", out)
+    assert r.returncode == 0, r.stderr
+    assert "no compare.png" not in r.stderr, r.stderr
+    assert erpt.read_image(str(out / "compare.png")).shape[1] >= 500
+    report = json.loads((out / "compare.json").read_text())
+    assert len(report["results"]) == 2
+    # The module's own command line, on the same report.
+    p = subprocess.run([sys.executable, "-m", "erpt.plot", str(out / "compare.json"), "-o",
+                        str(tmp_path / "again.png")], capture_output=True, text=True)
+    assert p.returncode == 0, p.stderr
+    assert (tmp_path / "again.png").exists()
+
+
+@pytest.mark.parametrize("script,args", [
+    ("convergence.py", ["--time", "0.2", "--size", "16"]),
+    ("image_and_error.py", ["--size", "16", "--spp", "1"]),
+])
+def test_examples_run(tmp_path, script, args):
+    out = tmp_path / "out.png"
+    env = dict(os.environ, PYTHONPATH=str(BUILD / "python"))
+    p = subprocess.run([sys.executable, str(ROOT / "examples" / script), *args, "-o", str(out)], capture_output=True,
+                       text=True, env=env, cwd=tmp_path)
+    assert p.returncode == 0, p.stderr
+    assert erpt.read_image(str(out)).shape[1] >= 500
