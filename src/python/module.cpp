@@ -342,8 +342,9 @@ PYBIND11_MODULE(_erpt, m) {
 
   m.def(
       "load_scene",
-      [](const std::string& path, const py::object& defaults) {
+      [](const std::string& path, const py::object& defaults, bool tessellateSpheres) {
         LoadOptions load;
+        load.tessellateSpheres = tessellateSpheres;
         if (!defaults.is_none())
           for (const auto& [k, v] : defaults.cast<py::dict>()) load.defines[k.cast<std::string>()] = optionText(v);
         PyScene s;
@@ -354,8 +355,9 @@ PYBIND11_MODULE(_erpt, m) {
         }
         return s;
       },
-      py::arg("path"), py::arg("defaults") = py::none(),
-      "Loads a Mitsuba 0.6 or 3 XML scene; `defaults` overrides its <default> values as the CLI's -D name=value");
+      py::arg("path"), py::arg("defaults") = py::none(), py::kw_only(), py::arg("tessellate_spheres") = false,
+      "Loads a Mitsuba 0.6 or 3 XML scene; `defaults` overrides its <default> values as the CLI's -D name=value; "
+      "`tessellate_spheres` loads sphere shapes as triangle meshes (the CLI's --tessellate-spheres)");
   m.def("render", &renderScene, py::arg("scene"), py::arg("integrator") = "path", py::kw_only(),
         py::arg("progress") = py::none(), py::arg("reference") = py::none(),
         "Renders `scene` with `integrator`; every render option of the CLI is a keyword argument (dashes as "

@@ -46,6 +46,9 @@ def test_load_scene_and_info(scene):
     # Scene defaults, as the CLI's -D.
     small = erpt.load_scene(str(DEFAULT_SCENE), defaults={"res": 40, "spp": 3})
     assert small.info()["film"] == (40, 40) and small.info()["spp"] == 3
+    assert info["spheres"] == 2
+    meshed = erpt.load_scene(str(DEFAULT_SCENE), tessellate_spheres=True).info()
+    assert meshed["spheres"] == 0 and meshed["triangles"] > info["triangles"]
 
 
 def test_render_gives_an_image_and_statistics(scene):
