@@ -8,12 +8,17 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace erpt {
 
 class ByteWriter {
  public:
+  ByteWriter() = default;
+  // Writes into `reuse` (emptied first), keeping its capacity: a snapshot taken again and
+  // again (sample_passes.cpp) then costs a copy, not a fresh allocation and its page faults.
+  explicit ByteWriter(std::vector<uint8_t> reuse) : bytes_(std::move(reuse)) { bytes_.clear(); }
   template <class T>
   void put(const T& value) {
     static_assert(std::is_trivially_copyable_v<T>);

@@ -40,12 +40,13 @@ int passesOfRank(int total, const RenderShare& share) {
 RgbImage renderInSamplePasses(const RenderSettings& s, size_t pixels, RenderStats& stats, const SamplePassHooks& hooks) {
   const int total = passesOfRank(s.spp, s.share);
   // The state is kept only when someone can use it: a stop rolls back to it, onPasses sees it.
+  // After the last pass only onPasses can (nothing is left to roll back).
   const bool keepState = s.stop || s.onPasses;
   RenderState state;
   auto save = [&](int done) {
     state.passesDone = done;
-    if (!keepState) return;
-    ByteWriter w;
+    if (!keepState || (done == total && !s.onPasses)) return;
+    ByteWriter w(std::move(state.bytes));
     w.putString(s.integrator);
     hooks.save(w);
     state.bytes = w.take();
