@@ -34,6 +34,9 @@ RgbImage readImage(const std::string& path, bool* isSrgbEncoded = nullptr);
 // Linear float EXR, or any format OpenImageIO writes by extension (.png gets the tone-mapped
 // treatment of writePngAtomic). Throws std::runtime_error on failure, leaving no file behind.
 void writeImageAtomic(const std::string& path, const RgbImage& image);
+// Threads that may compress one EXR file (OpenEXR's own pool; 1, the default: the calling
+// thread alone). The bytes written do not depend on it.
+void setExrWriteThreads(int threads);
 // Tone-mapped display image: clamp to [0,1], sRGB transfer curve, 8 bits.
 void writePngAtomic(const std::string& path, const RgbImage& image);
 

@@ -40,7 +40,8 @@ class PassWriter {
   std::unique_ptr<TevDisplay> display_;
 };
 
-// The output EXR and its PNG; `image.metadata` goes into the EXR.
-void writeImagePair(const std::string& exrPath, const RgbImage& image);
+// The output EXR and its PNG; `image.metadata` goes into the EXR. With threads other than 1
+// (0: all cores) the two are written at once.
+void writeImagePair(const std::string& exrPath, const RgbImage& image, int threads);
 
 }  // namespace erpt::cli

@@ -231,7 +231,7 @@ int runRender(const RenderArgs& given) {
     // Counts and per-pixel statistics: EXR only.
     if (name != "proposals" && name != "strategy") writePngAtomic(fs::path(p).replace_extension(".png").string(), extra);
   }
-  writeImagePair(out.string(), image);
+  writeImagePair(out.string(), image, a.threads);
   std::fprintf(stderr, "%s: %dx%d, %d spp%s, %llu samples in %.2f s, %.2f Mrays/s, %llu invalid samples dropped -> %s, %s\n",
                s.integrator.c_str(), r.width, r.height, stats.spp,
                stats.passes > 1 ? (" in " + std::to_string(stats.passes) + " passes").c_str() : "",

@@ -1,11 +1,14 @@
 // OpenEXR files: RGB float, ZIP-compressed (what OpenImageIO wrote before, read the same by
 // every EXR viewer). Reads R, G, B (or Y) of the first part, any pixel type, any data window.
+#include <algorithm>
+
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfThreading.h>
 
 #include "image_formats.h"
 
@@ -13,6 +16,13 @@ namespace erpt::image_formats {
 
 namespace {
 constexpr const char* kRgb[3] = {"R", "G", "B"};
+int writeThreads = 1;
+}
+
+void setExrThreads(int threads) {
+  writeThreads = std::max(1, threads);
+  // OpenEXR compresses line blocks on its global pool; the writing thread is not one of them.
+  Imf::setGlobalThreadCount(writeThreads > 1 ? writeThreads : 0);
 }
 
 bool writeExr(const std::string& path, const RgbImage& image, std::string& error) {
@@ -26,7 +36,7 @@ bool writeExr(const std::string& path, const RgbImage& image, std::string& error
     for (int c = 0; c < 3; ++c)
       frame.insert(kRgb[c], Imf::Slice(Imf::FLOAT, base + c * sizeof(float), sizeof(Color),
                                        sizeof(Color) * size_t(image.width)));
-    Imf::OutputFile file(path.c_str(), header);
+    Imf::OutputFile file(path.c_str(), header, writeThreads > 1 ? writeThreads : 0);
     file.setFrameBuffer(frame);
     file.writePixels(image.height);
     return true;

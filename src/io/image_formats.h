@@ -17,6 +17,7 @@ namespace erpt::image_formats {
 bool readExr(const std::string& path, RgbImage& image, std::string& error);
 bool readPng(const std::string& path, RgbImage& image, bool& isSrgb, std::string& error);
 bool writeExr(const std::string& path, const RgbImage& image, std::string& error);
+void setExrThreads(int threads);
 bool writePng8(const std::string& path, int width, int height, const uint8_t* rgb, std::string& error);
 
 // Through the OpenImageIO module (loaded here on first call; error names it if it cannot be).

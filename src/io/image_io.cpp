@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -18,9 +19,30 @@ namespace erpt {
 
 namespace {
 
-// The temporary file being written, for removePendingImageFiles() (a plain buffer, so a
-// signal handler may read it).
-char pendingPath[4096] = {0};
+// The temporary files being written, for removePendingImageFiles(): plain buffers, so that a
+// signal handler may read them; one slot per writer running at once (the CLI writes its EXR
+// and PNG on two threads).
+constexpr int kPendingSlots = 4;
+char pendingPath[kPendingSlots][4096] = {};
+std::atomic<bool> pendingClaimed[kPendingSlots] = {};
+
+// A free slot for `tmp` (-1 when every slot is taken: the file is then not removed on a signal).
+int claimPendingSlot(const std::string& tmp) {
+  for (int i = 0; i < kPendingSlots; ++i) {
+    bool expected = false;
+    if (pendingClaimed[i].compare_exchange_strong(expected, true)) {
+      std::snprintf(pendingPath[i], sizeof(pendingPath[i]), "%s", tmp.c_str());
+      return i;
+    }
+  }
+  return -1;
+}
+
+void releasePendingSlot(int slot) {
+  if (slot < 0) return;
+  pendingPath[slot][0] = 0;
+  pendingClaimed[slot].store(false);
+}
 
 std::string temporaryPathFor(const std::string& path) {
   namespace fs = std::filesystem;
@@ -40,10 +62,10 @@ std::string lowerExtension(const std::string& path) {
 template <class Write>
 void writeAtomic(const std::string& path, Write write) {
   std::string tmp = temporaryPathFor(path);
-  std::snprintf(pendingPath, sizeof(pendingPath), "%s", tmp.c_str());
+  const int slot = claimPendingSlot(tmp);
   auto fail = [&](const std::string& why) {
     std::remove(tmp.c_str());
-    pendingPath[0] = 0;
+    releasePendingSlot(slot);
     throw std::runtime_error("cannot write '" + path + "': " + why);
   };
   std::string error;
@@ -51,13 +73,14 @@ void writeAtomic(const std::string& path, Write write) {
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
   if (ec) fail(ec.message());
-  pendingPath[0] = 0;
+  releasePendingSlot(slot);
 }
 
 }  // namespace
 
 void removePendingImageFiles() {
-  if (pendingPath[0]) unlink(pendingPath);
+  for (const char* path : pendingPath)
+    if (path[0]) unlink(path);
 }
 
 RgbImage readImage(const std::string& path, bool* isSrgbEncoded) {
@@ -84,6 +107,8 @@ void writeImageAtomic(const std::string& path, const RgbImage& image) {
                          : image_formats::writeWithOiio(tmp, image.width, image.height, true, image.pixels.data(), error);
   });
 }
+
+void setExrWriteThreads(int threads) { image_formats::setExrThreads(threads); }
 
 void writeBytesAtomic(const std::string& path, const std::vector<uint8_t>& bytes) {
   writeAtomic(path, [&](const std::string& tmp, std::string& error) {

@@ -10,6 +10,7 @@ namespace erpt {
 namespace {
 constexpr size_t kChunk = 4096;  // samples per accumulation buffer: fixed, so results do not depend on threads
 constexpr int kMaxReach = 8;     // pixels a filter reaches per axis (gaussian radius 2: at most 5)
+constexpr size_t kMergeRows = 16;  // rows per task when the chunk buffers are added to the film
 
 // Integral of the 1D filter over offsets [a, b] from the centre, by the midpoint rule.
 double integral(const PixelFilter& f, double a, double b) {
@@ -26,10 +27,6 @@ void reach(float x, float r, int size, int& lo, int& hi) {
   hi = std::min(hi, lo + kMaxReach - 1);
 }
 
-struct Buffer {
-  int x0 = 0, y0 = 0, w = 0, h = 0;
-  std::vector<double> v;  // r, g, b, weight per pixel
-};
 }  // namespace
 
 const char* filmModeName(FilmMode m) {
@@ -85,12 +82,14 @@ void SplatFilm::splatOne(float x, float y, Add&& add) const {
 
 void SplatFilm::addSamples(const float* x, const float* y, const float* r, const float* g, const float* b, size_t n) {
   const size_t chunks = (n + kChunk - 1) / kChunk;
-  std::vector<Buffer> buffers(chunks);
+  // The buffers are kept from call to call: allocating them afresh for every batch cost a
+  // page fault per touched page (docs/performance.md).
+  if (chunkBuffers_.size() < chunks) chunkBuffers_.resize(chunks);
   const float radius = filter_.radius();
   forEachRange("splat", chunks, 1, [&](IndexRange range) {
     for (size_t c = range.begin; c < range.end; ++c) {
       const size_t begin = c * kChunk, end = std::min(n, begin + kChunk);
-      Buffer& buf = buffers[c];
+      ChunkBuffer& buf = chunkBuffers_[c];
       int xlo = width_, xhi = -1, ylo = height_, yhi = -1;
       for (size_t i = begin; i < end; ++i) {
         int a, e;
@@ -99,7 +98,10 @@ void SplatFilm::addSamples(const float* x, const float* y, const float* r, const
         reach(y[i], radius, height_, a, e);
         ylo = std::min(ylo, a), yhi = std::max(yhi, e);
       }
-      if (xhi < xlo || yhi < ylo) continue;
+      if (xhi < xlo || yhi < ylo) {
+        buf.w = buf.h = 0;
+        continue;
+      }
       buf.x0 = xlo, buf.y0 = ylo, buf.w = xhi - xlo + 1, buf.h = yhi - ylo + 1;
       buf.v.assign(size_t(buf.w) * size_t(buf.h) * 4, 0.0);
       for (size_t i = begin; i < end; ++i) {
@@ -111,15 +113,23 @@ void SplatFilm::addSamples(const float* x, const float* y, const float* r, const
       }
     }
   });
-  for (const Buffer& buf : buffers) {  // chunk order
-    for (int j = 0; j < buf.h; ++j)
-      for (int i = 0; i < buf.w; ++i) {
-        const double* v = &buf.v[(size_t(j) * size_t(buf.w) + size_t(i)) * 4];
-        const size_t p = size_t(buf.y0 + j) * size_t(width_) + size_t(buf.x0 + i);
-        sum_[3 * p] += v[0], sum_[3 * p + 1] += v[1], sum_[3 * p + 2] += v[2];
-        weight_[p] += v[3];
-      }
-  }
+  // Merged in bands of rows, in parallel; within a band the buffers are added in chunk order,
+  // so every pixel sees the same sequence of additions for any thread count.
+  const size_t bands = (size_t(height_) + kMergeRows - 1) / kMergeRows;
+  forEachRange("splat merge", bands, 1, [&](IndexRange range) {
+    const int rowBegin = int(range.begin * kMergeRows), rowEnd = int(std::min(size_t(height_), range.end * kMergeRows));
+    for (size_t c = 0; c < chunks; ++c) {
+      const ChunkBuffer& buf = chunkBuffers_[c];
+      const int j0 = std::max(0, rowBegin - buf.y0), j1 = std::min(buf.h, rowEnd - buf.y0);
+      for (int j = j0; j < j1; ++j)
+        for (int i = 0; i < buf.w; ++i) {
+          const double* v = &buf.v[(size_t(j) * size_t(buf.w) + size_t(i)) * 4];
+          const size_t p = size_t(buf.y0 + j) * size_t(width_) + size_t(buf.x0 + i);
+          sum_[3 * p] += v[0], sum_[3 * p + 1] += v[1], sum_[3 * p + 2] += v[2];
+          weight_[p] += v[3];
+        }
+    }
+  });
 }
 
 void SplatFilm::addScattered(const float* x, const float* y, const float* r, const float* g, const float* b, size_t n) {

@@ -53,11 +53,17 @@ class SplatFilm {
   // Calls add(px, py, w) for every pixel the sample at (x, y) reaches, w its normalized filter weight.
   template <class Add>
   void splatOne(float x, float y, Add&& add) const;
+  // One chunk's samples accumulated over the bounding box of the pixels they reach.
+  struct ChunkBuffer {
+    int x0 = 0, y0 = 0, w = 0, h = 0;
+    std::vector<double> v;  // r, g, b, weight per pixel
+  };
   const PixelFilter& filter_;
   int width_, height_;
   float norm_;                     // 1 / integral of the 1D filter
   std::vector<double> sum_, weight_;  // 3 and 1 per pixel
   std::vector<double> insideX_, insideY_;  // C per column and row
+  std::vector<ChunkBuffer> chunkBuffers_;  // addSamples' scratch, kept between calls
 };
 
 }  // namespace erpt

@@ -37,7 +37,12 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     float area = scene.primitiveArea(p);
     double w = double(area) * kPi * luminance(scene.emitters[e].radiance);
     if (w <= 0) continue;
-    items_.push_back({scene.isSphere(p) ? Kind::Sphere : Kind::Triangle, p, area});
+    Item item{scene.isSphere(p) ? Kind::Sphere : Kind::Triangle, p, area};
+    if (item.kind == Kind::Triangle) {
+      item.a = mesh.position(mesh.v0[p]), item.b = mesh.position(mesh.v1[p]), item.c = mesh.position(mesh.v2[p]);
+      item.normal = normalize(mesh.faceNormal(p));
+    }
+    items_.push_back(item);
     weights.push_back(w);
   }
   for (uint32_t e = 0; e < scene.emitters.size(); ++e) {
@@ -164,12 +169,10 @@ bool LightSampler::finishAreaSample(uint32_t primitive, float pdfArea, Vec3 ref,
 }
 
 bool LightSampler::sampleTriangle(const Item& item, float prob, Vec3 ref, float u1, float u2, LightSample& out) const {
-  const TriangleSoup& m = scene_.mesh;
   float b1, b2;
   squareToTriangle(u1, u2, b1, b2);
-  Vec3 a = m.position(m.v0[item.index]), b = m.position(m.v1[item.index]), c = m.position(m.v2[item.index]);
-  return finishAreaSample(item.index, prob / item.area, ref, a * (1 - b1 - b2) + b * b1 + c * b2,
-                          normalize(m.faceNormal(item.index)), out);
+  return finishAreaSample(item.index, prob / item.area, ref, item.a * (1 - b1 - b2) + item.b * b1 + item.c * b2,
+                          item.normal, out);
 }
 
 bool LightSampler::sampleSphere(const Item& item, float prob, Vec3 ref, float u1, float u2, LightSample& out) const {

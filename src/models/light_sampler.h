@@ -101,6 +101,9 @@ class LightSampler {
     Kind kind;
     uint32_t index;  // primitive id (triangles, spheres) or emitter index
     float area;
+    // A triangle's corners and unit face normal, copied here so that sampling it reads one
+    // item instead of following the mesh's index and vertex arrays (and renormalizing).
+    Vec3 a{}, b{}, c{}, normal{};
   };
   // 1 - cos of the half-angle of the cone sphere `sphere` subtends at `ref`, when sample()
   // samples that cone from there; 0 when it samples the sphere by area instead.
