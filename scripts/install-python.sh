@@ -9,5 +9,5 @@ python=$(bash scripts/python.sh)
 site=${1:-$("$python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')}
 mkdir -p "$site/erpt"
 cp build/python/erpt/*.py build/python/erpt/_erpt*.so "$site/erpt/"
-cp -L build/liberpt_core.so "$site/erpt/"
+cp -L build/liberpt_core.so build/liberpt_oiio.so "$site/erpt/"  # the OpenImageIO module is found beside the library
 echo "installed erpt into $site/erpt ($python -c 'import erpt')"

@@ -26,6 +26,11 @@ const LoadedModule& oiioModule() {
     std::error_code ec;
     const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
     if (!ec) candidates.push_back((exe.parent_path() / "liberpt_oiio.so").string());
+    // Beside the library this code is in: an installed Python package carries both files
+    // (scripts/install-python.sh), and the build directory may be gone.
+    Dl_info self{};
+    if (dladdr(reinterpret_cast<const void*>(&oiioModule), &self) && self.dli_fname)
+      candidates.push_back((std::filesystem::path(self.dli_fname).parent_path() / "liberpt_oiio.so").string());
     std::string errors;
     for (const std::string& path : candidates) {
       void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
