@@ -137,9 +137,10 @@ RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats
   };
   // Passes [first, end): their seeds stream into the chains, which then run to their end, so
   // that the state after the group holds no chain in flight.
+  PathTracerScratch seedScratch;
   passes.run = [&](int first, int end, const std::function<void(double)>& progress) {
     chainsRan = true;
-    const PathTraceOutput out{nullptr, nullptr, &store, sink, progress, s.stop};
+    const PathTraceOutput out{nullptr, nullptr, &store, sink, progress, s.stop, &seedScratch};
     if (!traceSeedSamples(o.seeds, s.height, setup, passSamples(setup.order, first, end, s.share), out, seedStats) ||
         !chainsRan)
       return false;

@@ -90,10 +90,11 @@ struct StageRunner {
   size_t grain(size_t n) const { return parallel ? kGrain : std::max<size_t>(n, 1); }
 };
 
-// Seed recording: where the seeds go and the batch's vertex history.
+// Seed recording: where the seeds go and the batch's vertex history (kept by the caller
+// from batch to batch: allocated afresh, its pages cost about a tenth of an ERPT render).
 struct SeedRecording {
   SeedStore& seeds;
-  VertexQueue history;
+  VertexQueue& history;
 };
 
 // Starts samples first + j (j in r) in the free path ids freeIds[j], in slots firstSlot + j.
@@ -214,6 +215,7 @@ void traceSamples(const Tracer& tracer, const StageContext& ctx, const PathSampl
 struct PathTracerScratch::Impl {
   PathWavefront wavefront;
   BatchRadiance radiance;
+  VertexQueue history;
 };
 PathTracerScratch::PathTracerScratch() : impl(std::make_unique<Impl>()) {}
 PathTracerScratch::~PathTracerScratch() = default;
@@ -222,7 +224,7 @@ uint64_t traceSeedsInline(const Tracer& tracer, const StageContext& ctx, const P
                           PathTracerScratch& scratch, StageTimes& times) {
   std::atomic<uint64_t> rays{0};
   if (samples.count == 0) return 0;
-  SeedRecording rec{seeds, {}};
+  SeedRecording rec{seeds, scratch.impl->history};
   scratch.impl->radiance.resize(samples.count);
   traceSamples(tracer, ctx, samples, 0, samples.count, samples.count, scratch.impl->wavefront, StageRunner{false, times},
                scratch.impl->radiance, 0, &rec, rays);
@@ -250,7 +252,8 @@ bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
   std::atomic<uint64_t> rayCount{0};
   uint64_t invalid = 0;
   BatchRadiance batch;
-  PathWavefront shared;                                  // seed recording
+  PathTracerScratch ownScratch;                          // seed recording, when the caller keeps none
+  PathTracerScratch& recording = out.scratch ? *out.scratch : ownScratch;
   PerThread<PathWavefront> local;                        // rendering: one per thread
   std::mutex timesMutex;
 
@@ -263,9 +266,9 @@ bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
     const size_t n = std::min(kBatchPaths, total - first);
     batch.resize(n);
     if (out.seeds) {
-      SeedRecording rec{*out.seeds, {}};
-      traceSamples(setup.tracer, setup.ctx, samples, first, n, n, shared, StageRunner{true, stats.stages}, batch, first,
-                   &rec, rayCount);
+      SeedRecording rec{*out.seeds, recording.impl->history};
+      traceSamples(setup.tracer, setup.ctx, samples, first, n, n, recording.impl->wavefront,
+                   StageRunner{true, stats.stages}, batch, first, &rec, rayCount);
     } else {
       // One task per chunk of samples, each on its thread's own wavefront.
       forEachRange("path chunks", (n + kChunkSamples - 1) / kChunkSamples, 1, [&](IndexRange chunks) {
@@ -304,9 +307,10 @@ RgbImage renderPath(const Scene& scene, const RenderSettings& settings, RenderSt
   SamplePassHooks passes;
   if (splat) setFilmStateHooks(passes, *splat, stats);
   else setFilmStateHooks(passes, setup.film, stats);
+  PathTracerScratch scratch;
   passes.run = [&](int first, int end, const std::function<void(double)>& progress) {
     const PathTraceOutput out{splat ? nullptr : &setup.film, splat ? &*splat : nullptr, settings.seeds, settings.seedSink,
-                              progress, settings.stop};
+                              progress, settings.stop, &scratch};
     return tracePathSamples(setup, passSamples(setup.order, first, end, settings.share), out, stats);
   };
   passes.image = [&](int done) {

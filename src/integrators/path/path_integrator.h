@@ -29,6 +29,7 @@ struct PathSampleSet {
   size_t count = 0;
   std::function<void(size_t k, uint32_t& pixel, uint32_t& sample)> at;
 };
+struct PathTracerScratch;
 // Where a run's results go: radiance to `film` (when set), contributions as seeds to
 // `seeds` (when set; with `seedSink`, streamed batch by batch and cleared).
 struct PathTraceOutput {
@@ -38,6 +39,10 @@ struct PathTraceOutput {
   std::function<void(SeedStore&)> seedSink;
   std::function<void(double fraction)> progress;
   const std::atomic<bool>* stop = nullptr;  // checked before every batch
+  // Seed recording's working memory, kept by the caller from run to run (a sample pass each):
+  // allocated afresh for every run, its first touch of every page showed as a tenth of an
+  // ERPT render's time (docs/performance.md). Without it, the run allocates its own.
+  PathTracerScratch* scratch = nullptr;
 };
 // The end of one batch of a sampler's run: its seeds (in out.seeds) go to out.seedSink and are
 // cleared, and the progress is reported (`done` of `total` samples). Adds a finished run's
@@ -51,7 +56,8 @@ void addRunCounts(RenderStats& stats, uint64_t samples, uint64_t rays, uint64_t 
 bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, const PathTraceOutput& out,
                       RenderStats& stats);
 
-// The path tracer's working memory for traceSeedsInline (one per thread; reused).
+// The path tracer's working memory for seed recording (traceSeedsInline: one per thread;
+// PathTraceOutput::scratch), reused from run to run.
 struct PathTracerScratch {
   PathTracerScratch();
   ~PathTracerScratch();

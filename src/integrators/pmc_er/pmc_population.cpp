@@ -173,9 +173,11 @@ void PmcPopulation::reduce(const std::function<void(std::vector<double>&)>& sum)
 void PmcPopulation::regenerate(const PoolRounds& rounds, size_t count) {
   const auto start = std::chrono::steady_clock::now();
   const size_t first = poolCursor_;
-  SeedStore store;
+  if (!poolScratch_) poolScratch_ = std::make_unique<PathTracerScratch>();
+  poolSeeds_.clear();
   PathTraceOutput out;
-  out.seeds = &store;
+  out.seeds = &poolSeeds_;
+  out.scratch = poolScratch_.get();
   out.seedSink = [&](SeedStore& batch) { absorb(batch, rounds, first); };
   const PathSampleSet samples{count, [&](size_t k, uint32_t& pixel, uint32_t& sample) { rounds.at(first + k, pixel, sample); }};
   RenderStats traced;

@@ -28,6 +28,7 @@
 #include "erpt/render.h"
 #include "integrators/chain_settings.h"
 #include "integrators/pmc_er/stratified_pool.h"
+#include "integrators/path/path_integrator.h"
 #include "render_setup.h"
 
 namespace erpt {
@@ -133,6 +134,9 @@ class PmcPopulation {
   std::vector<float> alpha_;               // Member adaptation: K per slot
   SeedStore candidates_;
   std::vector<double> candidateEnergy_;
+  // The pool's samples as traced, and the tracer's working memory: kept from round to round.
+  SeedStore poolSeeds_;
+  std::unique_ptr<PathTracerScratch> poolScratch_;
   std::vector<double> regionSums_;
   std::vector<double> stratCount_, stratRadius_, stratAccept_;
   std::vector<uint32_t> tally_;
