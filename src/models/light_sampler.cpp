@@ -221,6 +221,21 @@ const LightSampler::Item& LightSampler::pick(double uPick, float& probability) c
   return items_[i];
 }
 
+bool LightSampler::pickTriangle(double uPick, TriangleLight& out) const {
+  if (cdf_.empty()) return false;
+  float prob;
+  const Item& item = pick(uPick, prob);
+  if (item.kind != Kind::Triangle) return false;
+  out.a = item.a;
+  out.b = item.b;
+  out.c = item.c;
+  out.normal = item.normal;
+  out.pdfArea = prob / item.area;  // as sampleTriangle computes it
+  out.emitter = scene_.emitterOf(item.index);
+  out.radiance = scene_.emitters[out.emitter].radiance;
+  return true;
+}
+
 bool LightSampler::sample(Vec3 ref, double uPick, float u1, float u2, LightSample& out) const {
   if (cdf_.empty()) return false;
   float prob;

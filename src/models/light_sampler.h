@@ -74,6 +74,18 @@ class LightSampler {
   Color emitted(const SurfacePoint& sp, Vec3 w) const;
   const Scene& scene() const { return scene_; }
 
+  // sample()'s light choice when it falls on a triangle, for kernels that finish the sample
+  // themselves (shade_path_diffuse.cpp): the triangle's corners and unit normal, the area
+  // density p_light / area, the radiance and the emitter. False when uPick picks any other
+  // kind of light.
+  struct TriangleLight {
+    Vec3 a, b, c, normal;
+    float pdfArea;
+    Color radiance;
+    int emitter;  // index into Scene::emitters
+  };
+  bool pickTriangle(double uPick, TriangleLight& out) const;
+
   // Emission sampling (light_emission.cpp): a light by power (the same choice as sample()),
   // a point on it and a direction, with their densities. False when it carries nothing.
   bool sampleEmission(double uPick, float u1, float u2, float u3, float u4, EmissionSample& out) const;

@@ -5,6 +5,7 @@
 #include "kernels/erpt_path.h"
 #include "kernels/surface_vertex.h"
 #include "core/rng.h"
+#include "stages/shade_path_diffuse.h"
 #include "stages/stages.h"
 #include "tracer/tracer.h"
 
@@ -23,7 +24,13 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
                     const HitQueue& hits, RayQueue& shadowRays, VertexHistory history, IndexRange range) {
   const Emitter* env = ctx.scene.environment();
   const bool recording = history.vertices != nullptr;
+  // Plain diffuse hits go to the vector kernel, a packet at a time; the rest run the body below.
+  DiffuseShadePacket diffuse;
   for (size_t k = range.begin; k < range.end; ++k) {
+    if (ctx.vectorShading && diffuse.add(ctx, paths, slots, rays, hits, k)) {
+      if (diffuse.full()) diffuse.shade(ctx, paths, slots, rays, shadowRays, history);
+      continue;
+    }
     const uint32_t id = slots.path[k];
     const size_t vertex = history.base + k;
     slots.alive[k] = 0;
@@ -129,6 +136,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     setRay(rays, k, offsetOrigin(sp.position, sp.geometricNormal, wo), wo, 0.0f, std::numeric_limits<float>::infinity());
     slots.alive[k] = 1;
   }
+  diffuse.shade(ctx, paths, slots, rays, shadowRays, history);
 }
 
 void stageShadowResolve(const RayQueue& shadowRays, const PathSlotQueue& slots, PathQueue& paths, IndexRange range) {

@@ -23,6 +23,9 @@ struct StageContext {
   int spp;
   int maxDepth;
   int rrDepth = 5;  // Russian roulette from this path depth on (Mitsuba's default)
+  // stageShadePath shades plain diffuse hits in vector lanes (shade_path_diffuse.h); false:
+  // every hit through the scalar body, so that tests and bm_kernels can compare the two.
+  bool vectorShading = true;
 };
 
 // Random-number dimensions of one camera sample (stream key = (pixel, sample)): two for the

@@ -1,0 +1,269 @@
+// The diffuse shade kernel (shade_path_diffuse.h): gather, vector body, scatter. Every
+// formula mirrors the scalar code it replaces for these hits: triangleSurfaceAt, Frame,
+// LightSampler::sampleTriangle / finishAreaSample, connectToLight, the diffuse lobe of
+// bsdfEval / bsdfPdf / bsdfSample, offsetOrigin and the roulette of stageShadePath.
+#include "stages/shade_path_diffuse.h"
+
+#include <limits>
+
+#include <xsimd/xsimd.hpp>
+
+#include "core/rng.h"
+#include "kernels/surface_vertex.h"
+#include "models/surface.h"
+#include "tracer/tracer.h"
+
+namespace erpt {
+
+namespace {
+
+using batch = xsimd::batch<float>;
+using lanes = batch::batch_bool_type;
+constexpr size_t kLanes = batch::size;
+static_assert(DiffuseShadePacket::kCapacity % kLanes == 0, "a packet is whole batches");
+
+struct V3 {
+  batch x, y, z;
+};
+V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+V3 operator*(const V3& a, const batch& s) { return {a.x * s, a.y * s, a.z * s}; }
+V3 operator*(const V3& a, const V3& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+V3 operator/(const V3& a, const batch& s) { return {a.x / s, a.y / s, a.z / s}; }
+batch dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+V3 cross(const V3& a, const V3& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+V3 select(const lanes& m, const V3& a, const V3& b) {
+  return {xsimd::select(m, a.x, b.x), xsimd::select(m, a.y, b.y), xsimd::select(m, a.z, b.z)};
+}
+lanes isBlack(const V3& c) { return (c.x == batch(0.0f)) & (c.y == batch(0.0f)) & (c.z == batch(0.0f)); }
+
+// Frame(n) of math.h (Duff et al.'s branchless basis), lane by lane.
+struct LaneFrame {
+  V3 s, t, n;
+  explicit LaneFrame(const V3& normal) : n(normal) {
+    const batch sign = xsimd::copysign(batch(1.0f), n.z);
+    const batch a = batch(-1.0f) / (sign + n.z);
+    const batch b = n.x * n.y * a;
+    s = {batch(1.0f) + sign * n.x * n.x * a, sign * b, -sign * n.x};
+    t = {b, sign + n.y * n.y * a, -n.y};
+  }
+  V3 toLocal(const V3& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
+  V3 toWorld(const V3& v) const { return s * v.x + t * v.y + n * v.z; }
+};
+
+// offsetOrigin of surface.h.
+V3 offsetOrigin(const V3& p, const V3& ng, const V3& dir) {
+  const batch scale = xsimd::max(xsimd::max(xsimd::abs(p.x), xsimd::abs(p.y)), xsimd::max(xsimd::abs(p.z), batch(1e-2f)));
+  const batch eps = scale * 2e-5f;
+  return p + ng * xsimd::select(dot(dir, ng) >= batch(0.0f), eps, -eps);
+}
+
+// squareToCosineHemisphere of warp.h: the concentric disk lifted to the hemisphere.
+V3 cosineHemisphere(const batch& u1, const batch& u2) {
+  const batch a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
+  const lanes wide = a * a > b * b;
+  const batch r = xsimd::select(wide, a, b);
+  const batch ratio = xsimd::select(wide, b, a) / r;  // 0/0 at the centre, replaced below
+  const batch quarter(kPi / 4);
+  const batch phi = xsimd::select(wide, quarter * ratio, batch(kPi / 2) - quarter * ratio);
+  const auto sc = xsimd::sincos(phi);
+  const lanes centre = (a == batch(0.0f)) & (b == batch(0.0f));
+  const batch x = xsimd::select(centre, batch(0.0f), r * sc.second);
+  const batch y = xsimd::select(centre, batch(0.0f), r * sc.first);
+  return {x, y, xsimd::sqrt(xsimd::max(batch(0.0f), 1.0f - x * x - y * y))};
+}
+
+}  // namespace
+
+bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots,
+                             const RayQueue& rays, const HitQueue& hits, size_t k) {
+  const uint32_t geom = hits.geomID[k];
+  if (geom == kNoHit || geom == kRefusedRay) return false;
+  const TriangleSoup& mesh = ctx.scene.mesh;
+  const uint32_t tri = hits.primID[k];
+  if (tri >= mesh.triangleCount() || mesh.emitter[tri] >= 0) return false;
+  const Material& m = ctx.scene.materials[size_t(mesh.material[tri])];
+  if (m.kind != BsdfKind::Diffuse || m.reflectance.texture >= 0 || m.adjustsShadingFrame()) return false;
+  const uint32_t id = slots.path[k];
+  const uint32_t depth = paths.depth[id];
+  if (ctx.maxDepth >= 0 && depth >= uint32_t(ctx.maxDepth)) return false;
+  const uint64_t key = sampleKey(ctx.seed, paths.pixel[id], paths.sample[id]);
+  LightSampler::TriangleLight light;
+  if (!ctx.lights.pickTriangle(uniformDouble(key, bounceDim(depth, kLightPick)), light)) return false;
+
+  const size_t j = count_++;
+  slot_[j] = uint32_t(k);
+  triangle_[j] = tri;
+  lightEmitter_[j] = light.emitter;
+  auto put3 = [&](int first, Vec3 v) { in_[first][j] = v.x, in_[first + 1][j] = v.y, in_[first + 2][j] = v.z; };
+  in_[kB1][j] = hits.u[k];
+  in_[kB2][j] = hits.v[k];
+  const uint32_t i0 = mesh.v0[tri], i1 = mesh.v1[tri], i2 = mesh.v2[tri];
+  put3(kP0x, mesh.position(i0));
+  put3(kP1x, mesh.position(i1));
+  put3(kP2x, mesh.position(i2));
+  const bool smooth = mesh.smooth[tri] != 0;
+  in_[kSmooth][j] = smooth ? 1.0f : 0.0f;
+  put3(kN0x, smooth ? mesh.normal(i0) : Vec3(0.0f));
+  put3(kN1x, smooth ? mesh.normal(i1) : Vec3(0.0f));
+  put3(kN2x, smooth ? mesh.normal(i2) : Vec3(0.0f));
+  put3(kDirX, rays.dirAt(k));
+  put3(kThroughputR, paths.throughputAt(id));
+  put3(kReflectanceR, m.reflectance.value);
+  in_[kTwoSided][j] = m.twoSided ? 1.0f : 0.0f;
+  put3(kLightAx, light.a);
+  put3(kLightBx, light.b);
+  put3(kLightCx, light.c);
+  put3(kLightNx, light.normal);
+  in_[kLightPdfArea][j] = light.pdfArea;
+  put3(kLightR, light.radiance);
+  in_[kULight1][j] = uniformFloat(key, bounceDim(depth, kLight1));
+  in_[kULight2][j] = uniformFloat(key, bounceDim(depth, kLight2));
+  in_[kUBsdf1][j] = uniformFloat(key, bounceDim(depth, kBsdf1));
+  in_[kUBsdf2][j] = uniformFloat(key, bounceDim(depth, kBsdf2));
+  roulette_[j] = int(depth) >= ctx.rrDepth ? uniformDouble(key, bounceDim(depth, kRoulette)) : 0.0;
+  return true;
+}
+
+void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSlotQueue& slots, RayQueue& rays,
+                               RayQueue& shadowRays, VertexHistory history) {
+  if (count_ == 0) return;
+  // Rows past count_ hold stale or unset values; their lanes are computed and never stored.
+  for (size_t i = 0; i < count_; i += kLanes) {
+    auto get = [&](int c) { return batch::load_aligned(&in_[c][i]); };
+    auto get3 = [&](int first) { return V3{get(first), get(first + 1), get(first + 2)}; };
+    auto put = [&](int c, const batch& b) { b.store_aligned(&out_[c][i]); };
+    auto put3 = [&](int first, const V3& v) { put(first, v.x), put(first + 1, v.y), put(first + 2, v.z); };
+    auto putMask = [&](int c, const lanes& m) { put(c, xsimd::select(m, batch(1.0f), batch(0.0f))); };
+
+    // The surface point (triangleSurfaceAt).
+    const batch b1 = get(kB1), b2 = get(kB2), b0 = 1.0f - b1 - b2;
+    const V3 p0 = get3(kP0x), p1 = get3(kP1x), p2 = get3(kP2x);
+    const V3 position = p0 * b0 + p1 * b1 + p2 * b2;
+    const V3 face = cross(p1 - p0, p2 - p0);
+    const V3 ng = face / xsimd::sqrt(dot(face, face));
+    const V3 interpolated = get3(kN0x) * b0 + get3(kN1x) * b1 + get3(kN2x) * b2;
+    const batch interpolatedLength = xsimd::sqrt(dot(interpolated, interpolated));
+    const lanes useInterpolated = (get(kSmooth) != batch(0.0f)) & (interpolatedLength > batch(0.0f));
+    const LaneFrame frame(select(useInterpolated, interpolated / interpolatedLength, ng));
+    const V3 dir = get3(kDirX);
+    const batch wiZ = -dot(dir, frame.n);
+    // sideFlip: the front, or the back of a two-sided material seen as its front.
+    const batch flip = xsimd::select(wiZ > batch(0.0f), batch(1.0f),
+                                     xsimd::select((get(kTwoSided) != batch(0.0f)) & (wiZ < batch(0.0f)), batch(-1.0f),
+                                                   batch(0.0f)));
+    const lanes seen = flip != batch(0.0f);
+    const V3 throughput = get3(kThroughputR), reflectance = get3(kReflectanceR);
+
+    // Next-event estimation (connectToLight with sampleTriangle and the diffuse lobe).
+    const batch u1 = get(kULight1), u2 = get(kULight2);
+    const lanes lower = u1 < u2;
+    const batch lb1 = xsimd::select(lower, u1 * 0.5f, u1 - u2 * 0.5f);
+    const batch lb2 = xsimd::select(lower, u2 - u1 * 0.5f, u2 * 0.5f);
+    const V3 lightPoint = get3(kLightAx) * (1.0f - lb1 - lb2) + get3(kLightBx) * lb1 + get3(kLightCx) * lb2;
+    const V3 toLight = lightPoint - position;
+    const batch dist2 = dot(toLight, toLight);
+    const V3 lightDir = toLight / xsimd::sqrt(dist2);
+    const batch cosLight = -dot(get3(kLightNx), lightDir);
+    const batch lightPdf = get(kLightPdfArea) * dist2 / cosLight;
+    const batch cosOut = dot(lightDir, frame.n) * flip;
+    const V3 f = reflectance * (cosOut * kInvPi);
+    const batch bsdfPdf = cosOut * kInvPi;
+    const lanes connects =
+        seen & (dist2 > batch(0.0f)) & (cosLight > batch(0.0f)) & (cosOut > batch(0.0f)) & ~isBlack(f);
+    const batch a2 = lightPdf * lightPdf, p2b = bsdfPdf * bsdfPdf;
+    const batch mis = xsimd::select(a2 + p2b > batch(0.0f), a2 / (a2 + p2b), batch(0.0f));
+    const V3 contribution = f * get3(kLightR) * (mis / lightPdf);
+    putMask(kNeeOk, connects);
+    put3(kNgx, ng);
+    put3(kNsx, frame.n);
+    put(kNeeMis, mis);
+    put(kNeeBsdfPdf, bsdfPdf);
+    put3(kLightPx, lightPoint);
+    put3(kNeeR, throughput * contribution);
+    const V3 shadowOrigin = offsetOrigin(position, ng, lightDir);
+    const V3 shadowSpan = lightPoint - shadowOrigin;
+    put3(kShadowOx, shadowOrigin);
+    put3(kShadowDx, lightDir);
+    put(kShadowTfar, xsimd::sqrt(dot(shadowSpan, shadowSpan)) * (1 - 1e-4f));
+
+    // The cosine-weighted bounce (bsdfSample's diffuse lobe).
+    const V3 wo = cosineHemisphere(get(kUBsdf1), get(kUBsdf2));
+    const batch pdf = wo.z * kInvPi;
+    const V3 weight = (reflectance * (wo.z * kInvPi)) / pdf;
+    const lanes bounces = seen & (wo.z > batch(0.0f)) & (pdf > batch(0.0f)) & ~isBlack(weight);
+    const V3 woWorld = frame.toWorld({wo.x, wo.y, wo.z * flip});
+    putMask(kBounceOk, bounces);
+    put3(kNextR, throughput * weight);
+    put(kBsdfPdf, pdf);
+    put3(kPx, position);
+    put3(kRayOx, offsetOrigin(position, ng, woWorld));
+    put3(kRayDx, woWorld);
+  }
+
+  auto get3 = [&](int first, size_t j) { return Vec3(out_[first][j], out_[first + 1][j], out_[first + 2][j]); };
+  const bool recording = history.vertices != nullptr;
+  const TriangleSoup& mesh = ctx.scene.mesh;
+  for (size_t j = 0; j < count_; ++j) {
+    const size_t k = slot_[j];
+    const uint32_t id = slots.path[k];
+    const size_t vertex = history.base + k;
+    slots.alive[k] = 0;
+    if (recording) {  // the hit, as setSurfaceVertex writes it (a diffuse, non-emitting triangle)
+      const uint32_t tri = triangle_[j];
+      const uint32_t i0 = mesh.v0[tri], i1 = mesh.v1[tri], i2 = mesh.v2[tri];
+      const float b1 = in_[kB1][j], b2 = in_[kB2][j], b0 = 1 - b1 - b2;
+      VertexQueue::Row v;  // the whole row: pdfForward 0 and the parent link are written too
+      v.p = get3(kPx, j);
+      v.ns = get3(kNsx, j);
+      v.ng = get3(kNgx, j);
+      v.material = mesh.material[tri];
+      v.u = mesh.u[i0] * b0 + mesh.u[i1] * b1 + mesh.u[i2] * b2;
+      v.v = mesh.v[i0] * b0 + mesh.v[i1] * b1 + mesh.v[i2] * b2;
+      v.kind = kNonSpecularVertex;
+      v.parent = paths.lastVertex[id];
+      history.vertices->setRow(vertex, v);
+      paths.lastVertex[id] = int32_t(vertex);
+      slots.emitWeight[k] = slots.neeWeight[k] = 0;
+      slots.pLengthHere[k] = paths.pLength[id];
+    }
+    if (out_[kNeeOk][j] != 0) {
+      slots.neeSet(k, get3(kNeeR, j));
+      setRay(shadowRays, k, get3(kShadowOx, j), get3(kShadowDx, j), 0.0f, out_[kShadowTfar][j]);
+      if (recording) {
+        slots.neeWeight[k] = out_[kNeeMis][j];
+        slots.neeBsdfPdf[k] = out_[kNeeBsdfPdf][j];
+        slots.neeLightPdf[k] = in_[kLightPdfArea][j];
+        slots.neeLightKind[k] = kLightVertex;
+        slots.neeLightEmitter[k] = lightEmitter_[j];
+        slots.neeLightSet(k, get3(kLightPx, j));
+        slots.neeLightNSet(k, Vec3(in_[kLightNx][j], in_[kLightNy][j], in_[kLightNz][j]));
+      }
+    } else {
+      slots.neeSet(k, Color(0.0f));
+      disableRay(shadowRays, k);
+    }
+    if (out_[kBounceOk][j] == 0) continue;
+    if (recording) {
+      history.vertices->pdfForward[vertex] = out_[kBsdfPdf][j];
+      history.vertices->kind[vertex] = kNonSpecularVertex;
+    }
+    Color next = get3(kNextR, j);
+    const uint32_t depth = paths.depth[id];
+    if (int(depth) >= ctx.rrDepth) {  // Russian roulette, as in stageShadePath (reflection: eta 1)
+      const float q = russianRouletteSurvival(next, paths.etaSquared[id]);
+      if (!(roulette_[j] < q)) continue;
+      next = next / q;
+      paths.pLength[id] *= q;
+    }
+    paths.throughputSet(id, next);
+    paths.prevPdf[id] = out_[kBsdfPdf][j];
+    paths.prevSet(id, get3(kPx, j));
+    paths.depth[id] = depth + 1;
+    setRay(rays, k, get3(kRayOx, j), get3(kRayDx, j), 0.0f, std::numeric_limits<float>::infinity());
+    slots.alive[k] = 1;
+  }
+  count_ = 0;
+}
+
+}  // namespace erpt

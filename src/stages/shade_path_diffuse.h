@@ -1,0 +1,67 @@
+// The path tracer's shade stage for its commonest hit, in vector lanes: a path tracer spends
+// most of its shading on plain diffuse triangles lit by triangle lights, and the scalar body
+// (stageShadePath) runs their surface reconstruction, light sample, BSDF evaluation, MIS
+// weight and cosine-weighted bounce one path at a time, each a chain of dependent divisions,
+// square roots and sin/cos. A packet collects such slots (their inputs gathered into columns),
+// then shades them all with xsimd, 8 paths per instruction with AVX2, and scatters the
+// results: the same estimator as the scalar body, the same random numbers, rounding aside.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "stages/stages.h"
+
+namespace erpt {
+
+class DiffuseShadePacket {
+ public:
+  static constexpr size_t kCapacity = 64;
+
+  // Takes slot k when its hit qualifies: a non-emitting mesh triangle whose
+  // material is diffuse without textures or frame maps, below the depth limit, and the light
+  // choice of its random numbers falls on a triangle. False: the scalar body shades it.
+  bool add(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots, const RayQueue& rays,
+           const HitQueue& hits, size_t k);
+  bool full() const { return count_ == kCapacity; }
+  // Shades every slot taken and empties the packet. When recording seeds, also writes each
+  // hit to the vertex history and fills the slot's seed columns, as stageShadePath does.
+  void shade(const StageContext& ctx, PathQueue& paths, PathSlotQueue& slots, RayQueue& rays, RayQueue& shadowRays,
+             VertexHistory history);
+
+ private:
+  // Inputs and outputs, one column per quantity, one row per slot taken.
+  enum In {
+    kB1, kB2,                                          // the hit's barycentrics
+    kP0x, kP0y, kP0z, kP1x, kP1y, kP1z, kP2x, kP2y, kP2z,  // the triangle's corners
+    kSmooth,                                           // 1: interpolate the vertex normals
+    kN0x, kN0y, kN0z, kN1x, kN1y, kN1z, kN2x, kN2y, kN2z,
+    kDirX, kDirY, kDirZ,                               // the ray that hit
+    kThroughputR, kThroughputG, kThroughputB,
+    kReflectanceR, kReflectanceG, kReflectanceB,
+    kTwoSided,
+    kLightAx, kLightAy, kLightAz, kLightBx, kLightBy, kLightBz, kLightCx, kLightCy, kLightCz,
+    kLightNx, kLightNy, kLightNz, kLightPdfArea, kLightR, kLightG, kLightB,
+    kULight1, kULight2, kUBsdf1, kUBsdf2,
+    kInCount
+  };
+  enum Out {
+    kNeeOk, kNeeR, kNeeG, kNeeB,  // the next-event contribution, throughput included
+    kShadowOx, kShadowOy, kShadowOz, kShadowDx, kShadowDy, kShadowDz, kShadowTfar,
+    kBounceOk, kNextR, kNextG, kNextB, kBsdfPdf,  // throughput after the bounce, before roulette
+    kPx, kPy, kPz,                                // the hit point
+    kRayOx, kRayOy, kRayOz, kRayDx, kRayDy, kRayDz,
+    // What seed recording keeps of the hit and its connection.
+    kNgx, kNgy, kNgz, kNsx, kNsy, kNsz, kNeeMis, kNeeBsdfPdf, kLightPx, kLightPy, kLightPz,
+    kOutCount
+  };
+  alignas(64) float in_[kInCount][kCapacity] = {};
+  alignas(64) float out_[kOutCount][kCapacity] = {};
+  uint32_t slot_[kCapacity] = {};
+  uint32_t triangle_[kCapacity] = {};
+  int32_t lightEmitter_[kCapacity] = {};
+  double roulette_[kCapacity] = {};  // the Russian-roulette coin, compared in double as the scalar body does
+  size_t count_ = 0;
+};
+
+}  // namespace erpt

@@ -1,0 +1,226 @@
+// The diffuse vector kernel (stages/shade_path_diffuse.h) against the scalar body of the shade
+// stage, slot by slot: the same hits, random numbers and path state must give the same next-event
+// contribution, shadow ray, bounce, throughput and roulette outcome, and record the same seed
+// vertex and connection, up to rounding. The scene
+// has every case the kernel takes: two-sided walls seen from inside, a one-sided panel seen
+// from both sides, smooth normals, light points behind the surface, roulette at every depth.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/rng.h"
+#include "core/warp.h"
+#include "erpt/scene_loader.h"
+#include "models/camera.h"
+#include "stages/shade_path_diffuse.h"
+#include "stages/stages.h"
+#include "support/test_support.h"
+#include "tracer/tracer.h"
+
+namespace erpt {
+namespace {
+
+// An octahedron with vertex normals along its radii: a smooth mesh.
+constexpr const char* kOctahedron = R"(v 0.5 0 0
+v -0.5 0 0
+v 0 0.5 0
+v 0 -0.5 0
+v 0 0 0.5
+v 0 0 -0.5
+vn 1 0 0
+vn -1 0 0
+vn 0 1 0
+vn 0 -1 0
+vn 0 0 1
+vn 0 0 -1
+f 1//1 3//3 5//5
+f 3//3 2//2 5//5
+f 2//2 4//4 5//5
+f 4//4 1//1 5//5
+f 3//3 1//1 6//6
+f 2//2 3//3 6//6
+f 4//4 2//2 6//6
+f 1//1 4//4 6//6
+)";
+
+constexpr const char* kScene = R"(<scene version="3.0.0">
+  <shape type="cube">
+    <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.7 0.5 0.3"/></bsdf></bsdf>
+    <transform name="to_world"><scale value="2"/></transform>
+  </shape>
+  <shape type="rectangle">
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.4 0.4 0.9"/></bsdf>
+    <transform name="to_world"><rotate x="1" angle="30"/><translate y="-0.5" x="-0.6"/></transform>
+  </shape>
+  <shape type="obj">
+    <string name="filename" value="octahedron.obj"/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.2 0.8 0.4"/></bsdf>
+    <transform name="to_world"><translate x="0.8" z="0.5"/></transform>
+  </shape>
+  <shape type="rectangle">
+    <emitter type="area"><rgb name="radiance" value="5 5 5"/></emitter>
+    <transform name="to_world"><scale value="0.4"/><rotate x="1" angle="90"/><translate y="1.9"/></transform>
+  </shape>
+</scene>)";
+
+struct Queues {
+  PathQueue paths;
+  PathSlotQueue slots;
+  RayQueue rays, shadowRays;
+  HitQueue hits;
+};
+
+// n slots whose rays leave random points of the room in random directions, at depths 1..8,
+// with random throughputs, already intersected.
+Queues randomHits(const Tracer& tracer, size_t n) {
+  Queues q;
+  q.paths.resize(n);
+  q.slots.resize(n);
+  prepareRays(q.rays, n);
+  prepareRays(q.shadowRays, n);
+  q.hits.resize(n);
+  for (size_t k = 0; k < n; ++k) {
+    const uint64_t key = streamKey(11, k, 0);
+    const Vec3 origin(3 * uniformFloat(key, 0) - 1.5f, 3 * uniformFloat(key, 1) - 1.5f, 3 * uniformFloat(key, 2) - 1.5f);
+    q.paths.pixel[k] = uint32_t(k % 97);
+    q.paths.sample[k] = uint32_t(k / 97);
+    q.paths.depth[k] = 1 + uint32_t(k % 8);
+    q.paths.throughputSet(k, Color(0.2f + uniformFloat(key, 3), 0.2f + uniformFloat(key, 4), 0.2f + uniformFloat(key, 5)));
+    q.paths.radianceSet(k, Color(0.0f));
+    q.paths.prevPdf[k] = 0.3f;
+    q.paths.prevSet(k, origin);
+    q.paths.pLength[k] = 1;
+    q.paths.etaSquared[k] = 1;
+    q.paths.lastVertex[k] = int32_t(3 * k);  // a parent link the recorded vertex must carry
+    q.slots.path[k] = uint32_t(k);
+    setRay(q.rays, k, origin, squareToUniformSphere(uniformFloat(key, 6), uniformFloat(key, 7)), 0.0f,
+           std::numeric_limits<float>::infinity());
+  }
+  tracer.intersect(q.rays, q.hits, {0, n}, RayCoherence::Incoherent);
+  return q;
+}
+
+double relativeDifference(Vec3 a, Vec3 b) {
+  const double scale = std::max({std::abs(b.x), std::abs(b.y), std::abs(b.z), 1e-6f});
+  return std::max({std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.z - b.z)}) / scale;
+}
+
+double quantile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[size_t(p * double(v.size() - 1))];
+}
+
+TEST(ShadeDiffuse, VectorKernelMatchesTheScalarBodySlotBySlot) {
+  test::TempDir dir;
+  dir.write("octahedron.obj", kOctahedron);
+  const Scene scene = loadScene(dir.write("s.xml", kScene));
+  const Tracer tracer(scene);
+  const Camera camera(scene.camera, 4, 4);
+  const PixelFilter box(FilterKind::Box);
+  const LightSampler lights(scene);
+  StageContext ctx{scene, camera, box, lights, 5, 97, 1, -1};
+  ctx.rrDepth = 3;
+  const size_t n = 6007;  // not a multiple of the packet or of any vector width
+  Queues scalar = randomHits(tracer, n);
+  Queues vector = scalar;
+
+  // The kernel must take most of these hits (everything but the light and the misses).
+  size_t taken = 0;
+  {
+    DiffuseShadePacket probe;
+    for (size_t k = 0; k < n; ++k) {
+      if (probe.full()) probe = DiffuseShadePacket();
+      taken += probe.add(ctx, vector.paths, vector.slots, vector.rays, vector.hits, k) ? 1 : 0;
+    }
+  }
+  EXPECT_GT(taken, n * 8 / 10);
+
+  // Both record seeds, so the vertex history and the slots' seed columns are compared too.
+  VertexQueue scalarHistory, vectorHistory;
+  scalarHistory.resize(n);
+  vectorHistory.resize(n);
+  ctx.vectorShading = false;
+  stageShadePath(ctx, scalar.paths, scalar.slots, scalar.rays, scalar.hits, scalar.shadowRays,
+                 VertexHistory{&scalarHistory, 0}, {0, n});
+  ctx.vectorShading = true;
+  stageShadePath(ctx, vector.paths, vector.slots, vector.rays, vector.hits, vector.shadowRays,
+                 VertexHistory{&vectorHistory, 0}, {0, n});
+
+  size_t aliveDiffer = 0, neeDiffer = 0, alive = 0, connected = 0;
+  std::vector<double> throughputErr, dirErr, originErr, pdfErr, neeErr, shadowDirErr, tfarErr, vertexErr, seedErr;
+  for (size_t k = 0; k < n; ++k) {
+    const bool sAlive = scalar.slots.alive[k] != 0, vAlive = vector.slots.alive[k] != 0;
+    aliveDiffer += sAlive != vAlive;
+    const bool sNee = scalar.shadowRays.tfar[k] >= scalar.shadowRays.tnear[k];
+    const bool vNee = vector.shadowRays.tfar[k] >= vector.shadowRays.tnear[k];
+    neeDiffer += sNee != vNee;
+    if (sAlive && vAlive) {
+      ++alive;
+      throughputErr.push_back(relativeDifference(vector.paths.throughputAt(k), scalar.paths.throughputAt(k)));
+      dirErr.push_back(relativeDifference(vector.rays.dirAt(k), scalar.rays.dirAt(k)));
+      originErr.push_back(relativeDifference(vector.rays.orgAt(k), scalar.rays.orgAt(k)));
+      pdfErr.push_back(std::abs(vector.paths.prevPdf[k] - scalar.paths.prevPdf[k]) / scalar.paths.prevPdf[k]);
+      EXPECT_EQ(vector.paths.depth[k], scalar.paths.depth[k]);
+    }
+    if (sNee && vNee) {
+      ++connected;
+      neeErr.push_back(relativeDifference(vector.slots.neeAt(k), scalar.slots.neeAt(k)));
+      shadowDirErr.push_back(relativeDifference(vector.shadowRays.dirAt(k), scalar.shadowRays.dirAt(k)));
+      tfarErr.push_back(std::abs(vector.shadowRays.tfar[k] - scalar.shadowRays.tfar[k]) / scalar.shadowRays.tfar[k]);
+    }
+    EXPECT_EQ(vector.paths.radianceAt(k).x, scalar.paths.radianceAt(k).x);  // emission stays scalar
+
+    // Seed recording: the hit's vertex and what the bounce's contributions were made of.
+    ASSERT_EQ(vectorHistory.kind[k], scalarHistory.kind[k]) << "slot " << k;
+    ASSERT_EQ(vectorHistory.material[k], scalarHistory.material[k]) << "slot " << k;
+    ASSERT_EQ(vectorHistory.parent[k], scalarHistory.parent[k]) << "slot " << k;
+    ASSERT_EQ(vectorHistory.emitter[k], scalarHistory.emitter[k]) << "slot " << k;
+    ASSERT_EQ(vector.paths.lastVertex[k], scalar.paths.lastVertex[k]) << "slot " << k;
+    ASSERT_EQ(vector.slots.pLengthHere[k], scalar.slots.pLengthHere[k]) << "slot " << k;
+    ASSERT_EQ(vector.slots.emitWeight[k], scalar.slots.emitWeight[k]) << "slot " << k;
+    vertexErr.push_back(std::max({relativeDifference(vectorHistory.pAt(k), scalarHistory.pAt(k)),
+                                  relativeDifference(vectorHistory.nsAt(k), scalarHistory.nsAt(k)),
+                                  relativeDifference(vectorHistory.ngAt(k), scalarHistory.ngAt(k)),
+                                  relativeDifference(Vec3(vectorHistory.u[k], vectorHistory.v[k], 0.0f),
+                                                     Vec3(scalarHistory.u[k], scalarHistory.v[k], 0.0f))}));
+    if (sAlive && vAlive)
+      pdfErr.push_back(std::abs(vectorHistory.pdfForward[k] - scalarHistory.pdfForward[k]) / scalarHistory.pdfForward[k]);
+    if (sNee && vNee) {
+      ASSERT_EQ(vector.slots.neeLightKind[k], scalar.slots.neeLightKind[k]) << "slot " << k;
+      ASSERT_EQ(vector.slots.neeLightEmitter[k], scalar.slots.neeLightEmitter[k]) << "slot " << k;
+      ASSERT_EQ(vector.slots.neeLightPdf[k], scalar.slots.neeLightPdf[k]) << "slot " << k;
+      ASSERT_EQ(relativeDifference(vector.slots.neeLightNAt(k), scalar.slots.neeLightNAt(k)), 0.0) << "slot " << k;
+      seedErr.push_back(std::max({relativeDifference(vector.slots.neeLightAt(k), scalar.slots.neeLightAt(k)),
+                                  double(std::abs(vector.slots.neeWeight[k] - scalar.slots.neeWeight[k])),
+                                  double(std::abs(vector.slots.neeBsdfPdf[k] - scalar.slots.neeBsdfPdf[k]) /
+                                         scalar.slots.neeBsdfPdf[k])}));
+    }
+  }
+  // Every case is exercised in numbers: bounces, roulette deaths, connections and failed ones.
+  EXPECT_GT(alive, n / 3);
+  EXPECT_LT(alive, n * 95 / 100);
+  EXPECT_GT(connected, n / 5);
+  EXPECT_LT(connected, n * 9 / 10);
+  // A decision may differ only where rounding puts a value on the other side of a threshold.
+  EXPECT_LE(aliveDiffer, n / 1000) << "of " << n;
+  EXPECT_LE(neeDiffer, n / 1000) << "of " << n;
+  const char* names[] = {"throughput", "direction",   "origin",          "pdf",           "next-event",
+                         "shadow direction", "shadow tfar", "recorded vertex", "recorded light"};
+  int i = 0;
+  for (const auto* errors :
+       {&throughputErr, &dirErr, &originErr, &pdfErr, &neeErr, &shadowDirErr, &tfarErr, &vertexErr, &seedErr}) {
+    EXPECT_LT(quantile(*errors, 0.5), 1e-6) << names[i];
+    EXPECT_LT(quantile(*errors, 0.99), 1e-4) << names[i];
+    ++i;
+  }
+  std::printf("taken %zu alive %zu connected %zu of %zu; decisions differ: alive %zu, next event %zu\n", taken, alive,
+              connected, n, aliveDiffer, neeDiffer);
+}
+
+}  // namespace
+}  // namespace erpt
