@@ -41,6 +41,7 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     if (item.kind == Kind::Triangle) {
       item.a = mesh.position(mesh.v0[p]), item.b = mesh.position(mesh.v1[p]), item.c = mesh.position(mesh.v2[p]);
       item.normal = normalize(mesh.faceNormal(p));
+      hasTriangleLights_ = true;
     }
     items_.push_back(item);
     weights.push_back(w);

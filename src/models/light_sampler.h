@@ -85,6 +85,9 @@ class LightSampler {
     int emitter;  // index into Scene::emitters
   };
   bool pickTriangle(double uPick, TriangleLight& out) const;
+  // Whether pickTriangle can ever succeed (some light is a triangle), so that kernels on
+  // scenes lit only otherwise need not try it for every hit.
+  bool hasTriangleLights() const { return hasTriangleLights_; }
 
   // Emission sampling (light_emission.cpp): a light by power (the same choice as sample()),
   // a point on it and a direction, with their densities. False when it carries nothing.
@@ -138,6 +141,7 @@ class LightSampler {
   std::vector<float> primitiveProbability_;  // per world primitive id (0 if not emissive; instanced ids are past it)
   std::vector<float> emitterProbability_;   // per point / environment emitter
   std::vector<int64_t> emitterPrimitive_;   // per emitter: one of its light-sampled primitives, -1 none
+  bool hasTriangleLights_ = false;
   float environmentProbability_ = 0;
   const Emitter* environment_ = nullptr;  // the environment emitter, when it can be picked
   float sceneRadius_ = 1;
