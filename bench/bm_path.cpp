@@ -112,9 +112,12 @@ void BM_StageIntersectBounce(benchmark::State& state) {
   setRate(state, "rays/s", kPaths);
 }
 
+// vector:0 shades every hit through the scalar body, vector:1 plain diffuse hits in lanes.
 void BM_StageShade(benchmark::State& state) {
   PathFixture& f = fixture();
   ThreadPool pool(int(state.range(0)));
+  StageContext ctx = f.ctx;
+  ctx.vectorShading = state.range(1) != 0;
   RayQueue rays = f.cameraRays, shadow = f.shadowRays;
   for (auto _ : state) {
     state.PauseTiming();
@@ -122,7 +125,7 @@ void BM_StageShade(benchmark::State& state) {
     rays = f.cameraRays;
     state.ResumeTiming();
     forEachRange("shade", kPaths, kGrain,
-                 [&](IndexRange r) { stageShadePath(f.ctx, f.paths, f.slots, rays, f.hits, shadow, {}, r); });
+                 [&](IndexRange r) { stageShadePath(ctx, f.paths, f.slots, rays, f.hits, shadow, {}, r); });
   }
   setRate(state, "paths/s", kPaths);
 }
@@ -166,7 +169,7 @@ void BM_PathTracer(benchmark::State& state) {
 BENCHMARK(BM_StageGenerate)->THREADS;
 BENCHMARK(BM_StageIntersectCamera)->THREADS;
 BENCHMARK(BM_StageIntersectBounce)->ArgNames({"threads", "one_by_one"})->Args({1, 0})->Args({1, 1})->Args({2, 0})->Args({2, 1})->UseRealTime();
-BENCHMARK(BM_StageShade)->THREADS;
+BENCHMARK(BM_StageShade)->ArgNames({"threads", "vector"})->Args({1, 0})->Args({1, 1})->Args({2, 0})->Args({2, 1})->UseRealTime();
 BENCHMARK(BM_StageShadow)->THREADS;
 BENCHMARK(BM_StageCompact)->THREADS;
 BENCHMARK(BM_PathTracer)->THREADS->Unit(benchmark::kMillisecond);

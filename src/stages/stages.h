@@ -24,7 +24,7 @@ struct StageContext {
   int maxDepth;
   int rrDepth = 5;  // Russian roulette from this path depth on (Mitsuba's default)
   // stageShadePath shades plain diffuse hits in vector lanes (shade_path_diffuse.h); false:
-  // every hit through the scalar body, so that tests and bm_kernels can compare the two.
+  // every hit through the scalar body, so that tests and bm_path can compare the two.
   bool vectorShading = true;
 };
 
