@@ -46,13 +46,7 @@ struct PathFixture {
   }
   void resetPaths() {
     for (size_t i = 0; i < kPaths; ++i) {
-      paths.pixel[i] = uint32_t(i);
-      paths.sample[i] = 0;
-      paths.depth[i] = 1;
-      paths.throughputSet(i, Color(1.0f));
-      paths.radianceSet(i, Color(0.0f));
-      paths.prevPdf[i] = 0;
-      paths.pLength[i] = 1;
+      startPath(paths, uint32_t(i), ctx.seed, uint32_t(i), 0);
       slots.path[i] = uint32_t(i);
     }
   }

@@ -24,6 +24,7 @@
 #define ERPT_PATH_FIELDS(F, V, C)                                                                   \
   F(uint32_t, pixel, {}, "pixel index y * width + x")                                               \
   F(uint32_t, sample, {}, "sample index within the pixel")                                          \
+  F(uint64_t, key, {}, "random stream of the sample, sampleKey(seed, pixel, sample), hashed once at the start") \
   F(uint32_t, runIndex, {}, "index of the sample within its path-tracer run (PathSampleSet)")         \
   F(uint32_t, depth, {}, "segments traced so far (the camera ray is segment 1)")                    \
   C(throughput, "product of BSDF weights (f cos / pdf) / RR survival")                              \

@@ -17,8 +17,12 @@ inline uint64_t mix64(uint64_t z) {
 
 inline uint64_t streamKey(uint64_t seed, uint64_t a, uint64_t b) { return mix64(mix64(seed ^ mix64(a)) + b); }
 
+// Dimension d of a stream hashes key + (d + 1) * kDimensionStride (an odd constant, so the
+// dimensions of one key never collide).
+constexpr uint64_t kDimensionStride = 0x632be59bd9b4e019ull;
+
 // The 64 random bits of dimension `dim` of stream `key`; every draw below uses their top bits.
-inline uint64_t uniformBits(uint64_t key, uint32_t dim) { return mix64(key + 0x632be59bd9b4e019ull * (uint64_t(dim) + 1)); }
+inline uint64_t uniformBits(uint64_t key, uint32_t dim) { return mix64(key + kDimensionStride * (uint64_t(dim) + 1)); }
 
 // Uniform float in [0, 1) for dimension `dim` of stream `key`: 24 bits, for continuous
 // variables (positions, directions). Never scale it to an index or compare it with a

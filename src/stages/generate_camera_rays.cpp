@@ -9,6 +9,19 @@ namespace erpt {
 
 uint64_t sampleKey(uint64_t seed, uint32_t pixel, uint32_t sample) { return streamKey(seed, pixel, sample); }
 
+void startPath(PathQueue& paths, uint32_t id, uint64_t seed, uint32_t pixel, uint32_t sample) {
+  paths.pixel[id] = pixel;
+  paths.sample[id] = sample;
+  paths.key[id] = sampleKey(seed, pixel, sample);
+  paths.depth[id] = 1;
+  paths.throughputSet(id, Color(1.0f));
+  paths.radianceSet(id, Color(0.0f));
+  paths.prevPdf[id] = 0;
+  paths.pLength[id] = 1;
+  paths.etaSquared[id] = 1;
+  paths.lastVertex[id] = -1;
+}
+
 void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixels, const uint32_t* samples, RayQueue& rays,
                              IndexRange range, float* filmX, float* filmY) {
   const uint32_t spp = uint32_t(ctx.spp);

@@ -92,7 +92,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     // A path of maxDepth segments can grow no further (-1: unbounded).
     if (ctx.maxDepth >= 0 && depth >= uint32_t(ctx.maxDepth)) continue;
 
-    const uint64_t key = sampleKey(ctx.seed, paths.pixel[id], paths.sample[id]);
+    const uint64_t key = paths.key[id];
     const SurfaceColors colors = ctx.scene.surfaceColors(sp.material, sp.u, sp.v);
     const Vec3 wi = sp.shading.toLocal(-dir);
 

@@ -10,6 +10,7 @@
 
 #include "core/rng.h"
 #include "kernels/surface_vertex.h"
+#include "kernels/uniform_lanes.h"
 #include "models/surface.h"
 #include "tracer/tracer.h"
 
@@ -87,7 +88,7 @@ bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, co
   const uint32_t id = slots.path[k];
   const uint32_t depth = paths.depth[id];
   if (ctx.maxDepth >= 0 && depth >= uint32_t(ctx.maxDepth)) return false;
-  const uint64_t key = sampleKey(ctx.seed, paths.pixel[id], paths.sample[id]);
+  const uint64_t key = paths.key[id];
   LightSampler::TriangleLight light;
   if (!ctx.lights.pickTriangle(uniformDouble(key, bounceDim(depth, kLightPick)), light)) return false;
 
@@ -117,10 +118,9 @@ bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, co
   put3(kLightNx, light.normal);
   in_[kLightPdfArea][j] = light.pdfArea;
   put3(kLightR, light.radiance);
-  in_[kULight1][j] = uniformFloat(key, bounceDim(depth, kLight1));
-  in_[kULight2][j] = uniformFloat(key, bounceDim(depth, kLight2));
-  in_[kUBsdf1][j] = uniformFloat(key, bounceDim(depth, kBsdf1));
-  in_[kUBsdf2][j] = uniformFloat(key, bounceDim(depth, kBsdf2));
+  // The light point's and the bounce's numbers are drawn in lanes by shade().
+  for (int d = 0; d < kLaneDraws; ++d)
+    drawOffset_[d][j] = key + kDimensionStride * (uint64_t(bounceDim(depth, kLaneDrawDims[d])) + 1);
   roulette_[j] = int(depth) >= ctx.rrDepth ? uniformDouble(key, bounceDim(depth, kRoulette)) : 0.0;
   return true;
 }
@@ -128,6 +128,7 @@ bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, co
 void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSlotQueue& slots, RayQueue& rays,
                                RayQueue& shadowRays, VertexHistory history) {
   if (count_ == 0) return;
+  for (int d = 0; d < kLaneDraws; ++d) uniformFloatsAt(drawOffset_[d], count_, in_[kULight1 + d]);
   // Rows past count_ hold stale or unset values; their lanes are computed and never stored.
   for (size_t i = 0; i < count_; i += kLanes) {
     auto get = [&](int c) { return batch::load_aligned(&in_[c][i]); };

@@ -42,7 +42,7 @@ class DiffuseShadePacket {
     kTwoSided,
     kLightAx, kLightAy, kLightAz, kLightBx, kLightBy, kLightBz, kLightCx, kLightCy, kLightCz,
     kLightNx, kLightNy, kLightNz, kLightPdfArea, kLightR, kLightG, kLightB,
-    kULight1, kULight2, kUBsdf1, kUBsdf2,
+    kULight1, kULight2, kUBsdf1, kUBsdf2,  // drawn in lanes from drawOffset_, in this order
     kInCount
   };
   enum Out {
@@ -60,6 +60,10 @@ class DiffuseShadePacket {
   uint32_t slot_[kCapacity] = {};
   uint32_t triangle_[kCapacity] = {};
   int32_t lightEmitter_[kCapacity] = {};
+  // The streams of the four numbers drawn in lanes (uniformFloatsAt): key + (dim + 1) * stride.
+  static constexpr int kLaneDraws = 4;
+  static constexpr BounceDim kLaneDrawDims[kLaneDraws] = {kLight1, kLight2, kBsdf1, kBsdf2};
+  uint64_t drawOffset_[kLaneDraws][kCapacity] = {};
   double roulette_[kCapacity] = {};  // the Russian-roulette coin, compared in double as the scalar body does
   size_t count_ = 0;
 };

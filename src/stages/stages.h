@@ -39,6 +39,11 @@ inline uint32_t bounceDim(uint32_t depth, BounceDim use) { return 2 + kBounceDim
 
 uint64_t sampleKey(uint64_t seed, uint32_t pixel, uint32_t sample);
 
+// Path `id` starts as sample `sample` of `pixel`: at the camera (depth 1), throughput 1, no
+// radiance, no roulette or IOR factors, no recorded vertex, and its stream key hashed once
+// (every bounce draws from it).
+void startPath(PathQueue& paths, uint32_t id, uint64_t seed, uint32_t pixel, uint32_t sample);
+
 // Camera rays for the samples (pixel[i], sample[i]), i in range: film positions stratified
 // per pixel (Latin hypercube over the pixel's samples) and importance-sampled from the pixel
 // filter.

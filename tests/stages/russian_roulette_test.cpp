@@ -42,16 +42,9 @@ Outcome shadeAtGlass(int depth, size_t n) {
   prepareRays(shadowRays, n);
   hits.resize(n);
   for (size_t k = 0; k < n; ++k) {
-    paths.pixel[k] = uint32_t(k % 16);
-    paths.sample[k] = uint32_t(k / 16);
+    startPath(paths, uint32_t(k), ctx.seed, uint32_t(k % 16), uint32_t(k / 16));
     paths.depth[k] = uint32_t(depth);
-    paths.throughputSet(k, Color(1.0f));
-    paths.radianceSet(k, Color(0.0f));
-    paths.prevPdf[k] = 0;
     paths.prevSet(k, Vec3(0, 0, 3));
-    paths.pLength[k] = 1;
-    paths.etaSquared[k] = 1;
-    paths.lastVertex[k] = -1;
     slots.path[k] = uint32_t(k);
     setRay(rays, k, Vec3(0, 0, 3), Vec3(0, 0, -1), 0.0f, std::numeric_limits<float>::infinity());
   }

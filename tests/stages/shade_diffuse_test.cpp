@@ -76,7 +76,7 @@ struct Queues {
 
 // n slots whose rays leave random points of the room in random directions, at depths 1..8,
 // with random throughputs, already intersected.
-Queues randomHits(const Tracer& tracer, size_t n) {
+Queues randomHits(const Tracer& tracer, uint64_t seed, size_t n) {
   Queues q;
   q.paths.resize(n);
   q.slots.resize(n);
@@ -86,15 +86,11 @@ Queues randomHits(const Tracer& tracer, size_t n) {
   for (size_t k = 0; k < n; ++k) {
     const uint64_t key = streamKey(11, k, 0);
     const Vec3 origin(3 * uniformFloat(key, 0) - 1.5f, 3 * uniformFloat(key, 1) - 1.5f, 3 * uniformFloat(key, 2) - 1.5f);
-    q.paths.pixel[k] = uint32_t(k % 97);
-    q.paths.sample[k] = uint32_t(k / 97);
+    startPath(q.paths, uint32_t(k), seed, uint32_t(k % 97), uint32_t(k / 97));
     q.paths.depth[k] = 1 + uint32_t(k % 8);
     q.paths.throughputSet(k, Color(0.2f + uniformFloat(key, 3), 0.2f + uniformFloat(key, 4), 0.2f + uniformFloat(key, 5)));
-    q.paths.radianceSet(k, Color(0.0f));
     q.paths.prevPdf[k] = 0.3f;
     q.paths.prevSet(k, origin);
-    q.paths.pLength[k] = 1;
-    q.paths.etaSquared[k] = 1;
     q.paths.lastVertex[k] = int32_t(3 * k);  // a parent link the recorded vertex must carry
     q.slots.path[k] = uint32_t(k);
     setRay(q.rays, k, origin, squareToUniformSphere(uniformFloat(key, 6), uniformFloat(key, 7)), 0.0f,
@@ -126,7 +122,7 @@ TEST(ShadeDiffuse, VectorKernelMatchesTheScalarBodySlotBySlot) {
   StageContext ctx{scene, camera, box, lights, 5, 97, 1, -1};
   ctx.rrDepth = 3;
   const size_t n = 6007;  // not a multiple of the packet or of any vector width
-  Queues scalar = randomHits(tracer, n);
+  Queues scalar = randomHits(tracer, ctx.seed, n);
   Queues vector = scalar;
 
   // The kernel must take most of these hits (everything but the light and the misses).

@@ -98,20 +98,16 @@ struct SeedRecording {
 };
 
 // Starts samples first + j (j in r) in the free path ids freeIds[j], in slots firstSlot + j.
-void startPaths(PathWavefront& w, int cur, const PathSampleSet& samples, size_t first, size_t firstSlot, IndexRange r) {
+void startPaths(PathWavefront& w, int cur, uint64_t seed, const PathSampleSet& samples, size_t first, size_t firstSlot,
+                IndexRange r) {
   PathQueue& paths = w.paths;
   for (size_t j = r.begin; j < r.end; ++j) {
     const uint32_t id = w.freeIds[j];
     const size_t slot = firstSlot + j;
-    samples.at(first + j, paths.pixel[id], paths.sample[id]);
+    uint32_t pixel, sample;
+    samples.at(first + j, pixel, sample);
+    startPath(paths, id, seed, pixel, sample);
     paths.runIndex[id] = uint32_t(first + j);
-    paths.depth[id] = 1;
-    paths.throughputSet(id, Color(1.0f));
-    paths.radianceSet(id, Color(0.0f));
-    paths.prevPdf[id] = 0;
-    paths.pLength[id] = 1;
-    paths.etaSquared[id] = 1;
-    paths.lastVertex[id] = -1;
     w.slots[cur].path[slot] = id;
     w.startPixel[slot] = paths.pixel[id];
     w.startSample[slot] = paths.sample[id];
@@ -154,7 +150,7 @@ void traceSamples(const Tracer& tracer, const StageContext& ctx, const PathSampl
         bounceHistory.base = m;
       }
       run("generate", m, [&](IndexRange r) {
-        startPaths(w, cur, samples, next, live, r);
+        startPaths(w, cur, ctx.seed, samples, next, live, r);
         const IndexRange slotRange{live + r.begin, live + r.end};
         stageGenerateCameraRays(ctx, w.startPixel.data(), w.startSample.data(), w.rays[cur], slotRange, w.startX.data(),
                                 w.startY.data());
