@@ -18,16 +18,21 @@ inline uint64_t mix64(uint64_t z) {
 inline uint64_t streamKey(uint64_t seed, uint64_t a, uint64_t b) { return mix64(mix64(seed ^ mix64(a)) + b); }
 
 // Dimension d of a stream hashes key + (d + 1) * kDimensionStride (an odd constant, so the
-// dimensions of one key never collide).
+// dimensions of one key never collide): the dimension's offset. Kernels that draw in vector
+// lanes (kernels/uniform_lanes.h) take offsets.
 constexpr uint64_t kDimensionStride = 0x632be59bd9b4e019ull;
+inline uint64_t dimensionOffset(uint64_t key, uint32_t dim) { return key + kDimensionStride * (uint64_t(dim) + 1); }
 
 // The 64 random bits of dimension `dim` of stream `key`; every draw below uses their top bits.
-inline uint64_t uniformBits(uint64_t key, uint32_t dim) { return mix64(key + kDimensionStride * (uint64_t(dim) + 1)); }
+inline uint64_t uniformBits(uint64_t key, uint32_t dim) { return mix64(dimensionOffset(key, dim)); }
+
+// A float in [0, 1) from the top 24 of 64 random bits.
+inline float floatFromBits(uint64_t bits) { return float(bits >> 40) * 0x1p-24f; }
 
 // Uniform float in [0, 1) for dimension `dim` of stream `key`: 24 bits, for continuous
 // variables (positions, directions). Never scale it to an index or compare it with a
 // probability that may be below 2^-24: use uniformIndex or uniformDouble.
-inline float uniformFloat(uint64_t key, uint32_t dim) { return float(uniformBits(key, dim) >> 40) * 0x1p-24f; }
+inline float uniformFloat(uint64_t key, uint32_t dim) { return floatFromBits(uniformBits(key, dim)); }
 inline uint32_t uniformUint(uint64_t key, uint32_t dim) { return uint32_t(uniformBits(key, dim) >> 32); }
 // Uniform double in [0, 1), 53 bits, whose top 24 bits are uniformFloat's: for inverting
 // discrete CDFs and for coins against small probabilities. Every float in [2^-29, 1) is a

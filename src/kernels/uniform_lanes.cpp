@@ -43,7 +43,7 @@ void uniformFloatsAt(const uint64_t* offset, size_t n, float* out) {
     _mm_storeu_ps(out + j, _mm_mul_ps(_mm_cvtepi32_ps(_mm256_castsi256_si128(top)), _mm_set1_ps(0x1p-24f)));
   }
 #endif
-  for (; j < n; ++j) out[j] = float(mix64(offset[j]) >> 40) * 0x1p-24f;
+  for (; j < n; ++j) out[j] = floatFromBits(mix64(offset[j]));
 }
 
 }  // namespace erpt

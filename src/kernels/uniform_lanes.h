@@ -8,8 +8,7 @@
 
 namespace erpt {
 
-// out[j] = uniformFloat(key, dim) for the stream at offset[j] = key + (dim + 1) *
-// kDimensionStride, j < n (callers add the stride for the dimension they want).
+// out[j] = uniformFloat(key, dim) for offset[j] = dimensionOffset(key, dim) (core/rng.h), j < n.
 void uniformFloatsAt(const uint64_t* offset, size_t n, float* out);
 
 }  // namespace erpt

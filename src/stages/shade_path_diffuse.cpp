@@ -120,7 +120,7 @@ bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, co
   put3(kLightR, light.radiance);
   // The light point's and the bounce's numbers are drawn in lanes by shade().
   for (int d = 0; d < kLaneDraws; ++d)
-    drawOffset_[d][j] = key + kDimensionStride * (uint64_t(bounceDim(depth, kLaneDrawDims[d])) + 1);
+    drawOffset_[d][j] = dimensionOffset(key, bounceDim(depth, kLaneDrawDims[d]));
   roulette_[j] = int(depth) >= ctx.rrDepth ? uniformDouble(key, bounceDim(depth, kRoulette)) : 0.0;
   return true;
 }

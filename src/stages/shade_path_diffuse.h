@@ -60,7 +60,7 @@ class DiffuseShadePacket {
   uint32_t slot_[kCapacity] = {};
   uint32_t triangle_[kCapacity] = {};
   int32_t lightEmitter_[kCapacity] = {};
-  // The streams of the four numbers drawn in lanes (uniformFloatsAt): key + (dim + 1) * stride.
+  // The four numbers drawn in lanes (uniformFloatsAt), as their streams' dimensionOffset.
   static constexpr int kLaneDraws = 4;
   static constexpr BounceDim kLaneDrawDims[kLaneDraws] = {kLight1, kLight2, kBsdf1, kBsdf2};
   uint64_t drawOffset_[kLaneDraws][kCapacity] = {};

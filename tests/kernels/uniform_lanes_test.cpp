@@ -20,7 +20,7 @@ TEST(UniformLanes, SameNumbersAsUniformFloatForEveryCount) {
     for (size_t j = 0; j < n; ++j) {
       keys[j] = streamKey(3, n, j);
       dims[j] = uint32_t(uniformIndex(keys[j], 0, 1u << 20)) * (j % 3 == 0 ? 4096u : 1u);  // large dims too
-      offset[j] = keys[j] + kDimensionStride * (uint64_t(dims[j]) + 1);
+      offset[j] = dimensionOffset(keys[j], dims[j]);
     }
     std::vector<float> out(n + 1, -1.0f);
     uniformFloatsAt(offset.data(), n, out.data());
