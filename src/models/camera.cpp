@@ -80,7 +80,10 @@ void Camera::throughLens(float u1, float u2, Vec3& origin, Vec3& direction, floa
 }
 
 Camera::Ray Camera::generateRayFrom(Vec3 lensPoint, float filmX, float filmY) const {
-  Ray r = generateRay(filmX, filmY);
+  return refocus(lensPoint, generateRay(filmX, filmY));
+}
+
+Camera::Ray Camera::refocus(Vec3 lensPoint, Ray r) const {
   if (!hasLens()) return r;
   r.origin = lensPoint;
   aimAtFocus(origin_, forward_, focusDistance_, nearClip_, farClip_, lensPoint, r.direction, r.tnear, r.tfar);

@@ -37,6 +37,9 @@ class Camera {
   // position: for a fixed lens point the film-to-solid-angle Jacobian is cos^3 / (plane
   // distance)^2 of the ray's own angle to the axis, as for a pinhole (docs/erpt-acceptance.md).
   Ray generateRayFrom(Vec3 lensPoint, float filmX, float filmY) const;
+  // The same from the pinhole ray through that film position (generateRay's or
+  // generateRays'): without a lens, that ray.
+  Ray refocus(Vec3 lensPoint, Ray pinhole) const;
   // The film position whose ray from lensPoint passes through world point p; false behind
   // the lens. project(p) without a lens.
   bool projectFrom(Vec3 lensPoint, Vec3 p, float& filmX, float& filmY) const;

@@ -127,12 +127,12 @@ void startVeach(const MeasureContext& c, const CurrentPath& y, float, float, flo
 
 void startErptRange(const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                     ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
-  startEach<true, startErpt>(MutationKind::Caustic, ctx, chains, chainVertices, proposals, rays, range);
+  startEach<startErpt>(MutationKind::Caustic, ctx, chains, chainVertices, proposals, rays, range);
 }
 
 void startVeachRange(const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                      ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
-  startEach<true, startVeach>(MutationKind::CausticVeach, ctx, chains, chainVertices, proposals, rays, range);
+  startEach<startVeach>(MutationKind::CausticVeach, ctx, chains, chainVertices, proposals, rays, range);
 }
 
 float erptRatio(const MeasureContext&, const CurrentPath&, const CurrentPath&, float) {

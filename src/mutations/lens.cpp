@@ -10,7 +10,8 @@
 #include "models/camera.h"
 #include "mutations/mutation.h"
 #include "path_factors.h"
-#include "start_each.h"
+#include "core/rng.h"
+#include "tracer/tracer.h"
 
 namespace erpt {
 
@@ -85,49 +86,98 @@ int lensTailStart(const uint8_t* kinds, int n) {
   return target < 0 ? n : std::min(n, target + 1);
 }
 
-// The part of a start that does not depend on the film position's distribution.
-void startAt(const MeasureContext& c, const CurrentPath& y, float fx, float fy, ProposalStart& out) {
-  out.filmX = fx;
-  out.filmY = fy;
-  if (!(c.film.density(fx, fy) > 0)) {
-    out.reject = kRejectOffFilm;
-    return;
-  }
-  // From the chain's lens point (vertex 0; the pinhole without a lens), which stays fixed.
-  const Camera::Ray r = c.camera.hasLens() ? c.camera.generateRayFrom(y.vertices[0].p, fx, fy) : c.camera.generateRay(fx, fy);
-  out.origin = r.origin;
-  out.direction = r.direction;
-  out.tnear = r.tnear;
-  out.tfar = r.tfar;
-  out.cursor = 1;
-  out.walk = +1;
-  out.regenFirst = 1;
-  // From the packed signature: lens starts do not unpack the path.
-  const uint64_t signature = y.signature;
-  out.connectTo = connectionTarget([signature](int j) { return kindAt(signature, j); }, y.n);
-  out.regenLast = out.connectTo > 0 ? out.connectTo - 1 : y.n - 1;
+// Film positions of the two shapes: uniform in the square of half-side `size`, or in the
+// disk of radius `size` (radius size * sqrt(u1), angle 2 pi u2).
+void squareOffset(float size, float u1, float u2, float& dx, float& dy) {
+  dx = (2 * u1 - 1) * size;
+  dy = (2 * u2 - 1) * size;
 }
 
-void startSquare(const MeasureContext& c, const CurrentPath& y, float filmX, float filmY, float size, float u1, float u2,
-                 ProposalStart& out) {
-  startAt(c, y, filmX + (2 * u1 - 1) * size, filmY + (2 * u2 - 1) * size, out);
-}
-
-void startDisk(const MeasureContext& c, const CurrentPath& y, float filmX, float filmY, float size, float u1, float u2,
-               ProposalStart& out) {
-  // Uniform in the disk: radius size * sqrt(u1), angle 2 pi u2.
+void diskOffset(float size, float u1, float u2, float& dx, float& dy) {
   const float r = size * std::sqrt(u1), phi = 2 * kPi * u2;
-  startAt(c, y, filmX + r * std::cos(phi), filmY + r * std::sin(phi), out);
+  dx = r * std::cos(phi);
+  dy = r * std::sin(phi);
+}
+
+// The eye rays of a batch of lens starts. A scalar camera ray is a chain of dependent
+// divisions and square roots; the camera's vector kernel makes a batch of them at once.
+class EyeRayBatch {
+ public:
+  EyeRayBatch(const Camera& camera, const VertexQueue& chainVertices, RayQueue& rays)
+      : camera_(camera), chainVertices_(chainVertices), rays_(rays) {}
+
+  void add(size_t slot, float filmX, float filmY) {
+    slot_[count_] = slot;
+    filmX_[count_] = filmX;
+    filmY_[count_] = filmY;
+    if (++count_ == kSize) flush();
+  }
+
+  void flush() {
+    if (count_ == 0) return;
+    float dx[kSize], dy[kSize], dz[kSize], tnear[kSize], tfar[kSize];
+    camera_.generateRays(filmX_, filmY_, count_, dx, dy, dz, tnear, tfar);
+    for (size_t b = 0; b < count_; ++b) {
+      Camera::Ray r{camera_.position(), Vec3(dx[b], dy[b], dz[b]), tnear[b], tfar[b]};
+      // From the chain's lens point (vertex 0), which stays fixed.
+      if (camera_.hasLens()) r = camera_.refocus(chainVertices_.pAt(slot_[b] * kMaxChainVertices), r);
+      setRay(rays_, slot_[b], r.origin, r.direction, r.tnear, r.tfar);
+    }
+    count_ = 0;
+  }
+
+ private:
+  static constexpr size_t kSize = 64;
+
+  const Camera& camera_;
+  const VertexQueue& chainVertices_;
+  RayQueue& rays_;
+  size_t slot_[kSize];
+  float filmX_[kSize], filmY_[kSize];
+  size_t count_ = 0;
+};
+
+// Every lens start of a range: the new film position, the walk's plan from the packed
+// signature (lens starts never unpack the path), and the eye ray.
+template <auto Offset>
+void startLensRange(MutationKind kind, const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
+                    ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
+  const MeasureContext& c = ctx.measure;
+  EyeRayBatch eyeRays(c.camera, chainVertices, rays);
+  for (size_t i = range.begin; i < range.end; ++i) {
+    if (proposals.mutation[i] != uint8_t(kind) || proposals.state[i] != kProposalWalking) continue;
+    const uint64_t key = chains.key[i];
+    const uint32_t step = chains.step[i];
+    float dx, dy;
+    Offset(proposals.perturbSize[i], uniformFloat(key, stepDim(step, kDimStart1)),
+           uniformFloat(key, stepDim(step, kDimStart2)), dx, dy);
+    const float fx = chains.filmX[i] + dx, fy = chains.filmY[i] + dy;
+    proposals.filmX[i] = fx;
+    proposals.filmY[i] = fy;
+    if (!(c.film.density(fx, fy) > 0)) {
+      rejectProposal(proposals, rays, i, kRejectOffFilm);
+      continue;
+    }
+    const uint64_t signature = chains.signature[i];
+    const int connectTo = connectionTarget([signature](int j) { return kindAt(signature, j); }, chains.vertexCount[i]);
+    proposals.cursor[i] = 1;
+    proposals.walk[i] = +1;
+    proposals.regenFirst[i] = 1;
+    proposals.regenLast[i] = int8_t(connectTo > 0 ? connectTo - 1 : chains.vertexCount[i] - 1);
+    proposals.connectTo[i] = int8_t(connectTo);
+    eyeRays.add(i, fx, fy);
+  }
+  eyeRays.flush();
 }
 
 void startSquareRange(const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                       ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
-  startEach<false, startSquare>(MutationKind::Lens, ctx, chains, chainVertices, proposals, rays, range);
+  startLensRange<squareOffset>(MutationKind::Lens, ctx, chains, chainVertices, proposals, rays, range);
 }
 
 void startDiskRange(const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                     ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
-  startEach<false, startDisk>(MutationKind::LensDisk, ctx, chains, chainVertices, proposals, rays, range);
+  startLensRange<diskOffset>(MutationKind::LensDisk, ctx, chains, chainVertices, proposals, rays, range);
 }
 
 float squareRatio(const MeasureContext&, const CurrentPath& y, const CurrentPath& z, float size) {

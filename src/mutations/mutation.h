@@ -40,15 +40,13 @@ struct ProposalStart {
   RejectReason reject = kRejectNone;  // set when the proposal is impossible from the start
 };
 
-// Everything a unit reads about the chain's current path y.
-// The vertices and kinds are filled only for units that read them (startEach's
-// kReadsVertices); the signature always.
+// Everything a unit reads about the chain's current path y. (Lens starts read only the
+// signature and the film position, straight from the chain's columns.)
 struct CurrentPath {
   const PathVertex* vertices;
   const uint8_t* kinds;
   int n;
   float filmX, filmY;
-  uint64_t signature = 0;
 };
 
 // One chain slot as the accept stage hands it to a unit: the chain's and its proposal's rows,

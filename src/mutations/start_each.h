@@ -1,8 +1,9 @@
-// The loop every mutation unit's startRange runs: over the slots of a range whose proposal
-// chose this unit, read the chain's path (its vertices only when the unit reads them), call
-// the unit's start for one proposal (inlined: a template argument, not a pointer), and write
-// the proposal's columns and first ray. One loop per unit keeps the per-proposal math inline
-// and the dispatch on the kind in the mutate stage's loop over units.
+// The loop the caustic perturbations' startRange runs: over the slots of a range whose
+// proposal chose this unit, read the chain's path, call the unit's start for one proposal
+// (inlined: a template argument, not a pointer), and write the proposal's columns and first
+// ray. One loop per unit keeps the per-proposal math inline and the dispatch on the kind in
+// the mutate stage's loop over units. (Lens starts read no vertices and make their eye rays
+// in batches: lens.cpp.)
 #pragma once
 
 #include "core/rng.h"
@@ -12,7 +13,7 @@ namespace erpt {
 
 // StartOne is a function (a template argument, so the call is direct and can be inlined; a
 // function-pointer argument stays an indirect call per proposal).
-template <bool kReadsVertices, auto StartOne>
+template <auto StartOne>
 void startEach(MutationKind kind, const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
   uint8_t kinds[kMaxChainVertices];
@@ -20,19 +21,15 @@ void startEach(MutationKind kind, const StepConfig& ctx, const ChainQueue& chain
   for (size_t i = range.begin; i < range.end; ++i) {
     if (proposals.mutation[i] != uint8_t(kind) || proposals.state[i] != kProposalWalking) continue;
     const int n = chains.vertexCount[i];
-    if (kReadsVertices) {
-      unpackSignature(chains.signature[i], n, kinds);
-      loadChainPath(chains, chainVertices, i, y);
-    } else if (ctx.measure.camera.hasLens()) {
-      y[0] = loadPathVertex(chainVertices, i * kMaxChainVertices);  // the chain's lens point
-    }
+    unpackSignature(chains.signature[i], n, kinds);
+    loadChainPath(chains, chainVertices, i, y);
     const float filmX = chains.filmX[i], filmY = chains.filmY[i], size = proposals.perturbSize[i];
     const uint64_t key = chains.key[i];
     const uint32_t step = chains.step[i];
     ProposalStart start;
     start.filmX = filmX;
     start.filmY = filmY;
-    StartOne(ctx.measure, CurrentPath{y, kinds, n, filmX, filmY, chains.signature[i]}, filmX, filmY, size,
+    StartOne(ctx.measure, CurrentPath{y, kinds, n, filmX, filmY}, filmX, filmY, size,
              uniformFloat(key, stepDim(step, kDimStart1)), uniformFloat(key, stepDim(step, kDimStart2)), start);
     proposals.filmX[i] = start.filmX;
     proposals.filmY[i] = start.filmY;
