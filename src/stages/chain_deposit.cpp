@@ -44,12 +44,14 @@ namespace {
 // The film a record goes to, one kind per overload of applyDeposits.
 struct SlotOrderFilm {
   Film& film;
+  void prefetch(uint32_t pixel) const { film.prefetch(pixel); }
   void splat(const FilmDensity& density, const ChainQueue&, size_t, size_t, float x, float y, Color c) {
     density.splat(x, y, [&](uint32_t pixel, float w) { film.add(pixel, c * w); });
   }
 };
 struct LaneFilm {
   ConcurrentDeposits& target;
+  void prefetch(uint32_t pixel) const { target.film.prefetch(pixel); }
   void splat(const FilmDensity& density, const ChainQueue& chains, size_t slot, size_t record, float x, float y,
              Color c) {
     if (target.film.fits(c)) {
@@ -60,12 +62,25 @@ struct LaneFilm {
   }
 };
 
+// How many slots ahead the film's pixel under a slot's first record is prefetched: far enough
+// for a miss to arrive while the slots between are deposited.
+constexpr size_t kPrefetchAhead = 8;
+
+template <class Target>
+void prefetchPixel(const DepositQueue& deposits, size_t slot, int w, int h, Target& target) {
+  const size_t row = slot * kDepositsPerStep;
+  const float x = deposits.x[row], y = deposits.y[row];
+  // (The records of free slots and rejected steps are zero: a prefetch of pixel 0 is harmless.)
+  if (x >= 0 && y >= 0 && x < float(w) && y < float(h)) target.prefetch(uint32_t(y) * uint32_t(w) + uint32_t(x));
+}
+
 template <class Target>
 double depositRecords(ChainQueue& chains, const ProposalQueue& proposals, const DepositQueue& deposits, IndexRange range,
                       const FilmDensity& density, Target target, DepositFilters& filters) {
   double total = 0;
   const int w = density.width(), h = density.height();
   for (size_t i = range.begin; i < range.end; ++i) {
+    if (i + kPrefetchAhead < range.end) prefetchPixel(deposits, i + kPrefetchAhead, w, h, target);
     // Only slots that took a step this round have records; a free slot's are zero.
     bool stuck = false;
     uint32_t stuckPixel = 0;
