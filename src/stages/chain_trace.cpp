@@ -137,10 +137,14 @@ size_t stageChainTrace(const StepConfig& ctx, const ChainQueue& chains, const Ve
       setConnectionRay(shadowRays, i, z, eye, false, normalize(eye - z.p));
     } else if (connectTo > 0) {
       // Connect to the current path's fixed vertex, which stays where it is.
-      const PathVertex target = loadPathVertex(chainVertices, i * kMaxChainVertices + size_t(connectTo));
-      const bool environment = target.kind == kEnvironmentVertex;
-      const Vec3 d = environment ? -target.ns : normalize(target.p - z.p);
-      setConnectionRay(shadowRays, i, z, environment ? Vec3(0.0f) : offsetOrigin(target.p, target.ng, -d), environment, d);
+      // (Its columns read straight: a PathVertex copied out and read back stalls on store
+      // forwarding.)
+      const size_t target = i * kMaxChainVertices + size_t(connectTo);
+      const bool environment = chainVertices.kind[target] == kEnvironmentVertex;
+      const Vec3 targetP = chainVertices.pAt(target);
+      const Vec3 d = environment ? -chainVertices.nsAt(target) : normalize(targetP - z.p);
+      setConnectionRay(shadowRays, i, z, environment ? Vec3(0.0f) : offsetOrigin(targetP, chainVertices.ngAt(target), -d),
+                       environment, d);
     } else {
       rejectProposal(proposals, rays, i, kRejectKindChanged, k);  // the walk should have reached the light
       continue;
