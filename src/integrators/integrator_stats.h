@@ -21,5 +21,7 @@ void printMltSummary(const RenderStats& stats);
 // as one line each after `prefix:` (ERPT's and MLT's summaries).
 void printChainMoves(const char* prefix, const ErptStats& stats);
 void printRejections(const char* prefix, const ErptStats& stats);
+// "stage seconds:" and the seconds of each of the chain engine's stages, ending the line.
+void printChainStageSeconds(const RenderStats& stats);
 
 }  // namespace erpt

@@ -18,7 +18,7 @@ TEST(ErptCli, RendersAndPrintsTheChainSummary) {
   ASSERT_EQ(r.exitCode, 0) << r.output;
   EXPECT_TRUE(std::filesystem::exists(out));
   for (const char* s : {"seeds", "chains", "mutations", "lens", "caustic", "accepted", "rejected:", "occluded",
-                        "seeds deposited in place", "Mrays/s"})
+                        "seeds deposited in place", "Mrays/s", "stage seconds: accept", " mutate ", " deposit "})
     EXPECT_NE(r.output.find(s), std::string::npos) << s << "\n" << r.output;
 }
 

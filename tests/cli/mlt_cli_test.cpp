@@ -22,7 +22,7 @@ TEST(MltCli, RendersTheImageAndTheSummary) {
   const RgbImage img = readImage(out);
   ASSERT_EQ(img.width, 32);
   for (const char* s : {"mlt: b ", "bootstrap: 2048 samples", "500 chains x 33 steps", "large step ", "lens ",
-                        "accepted", "large step made no such path"})
+                        "accepted", "large step made no such path", "stage seconds: accept", " large step "})
     EXPECT_NE(r.output.find(s), std::string::npos) << s << "\n" << r.output;
 }
 

@@ -1,5 +1,6 @@
 // ERPT statistics after a render: what the chains did and where the time went.
 #include <cstdio>
+#include <string>
 
 #include "integrator_stats.h"
 #include "kernels/erpt_path.h"
@@ -41,6 +42,14 @@ void printRejections(const char* prefix, const ErptStats& e) {
   std::fprintf(stderr, "\n");
 }
 
+void printChainStageSeconds(const RenderStats& stats) {
+  std::fprintf(stderr, "stage seconds:");
+  const std::string prefix = "chain ";  // the chain engine's stages (chain_step.cpp, chain_lanes.cpp)
+  for (const auto& [name, seconds] : stats.stages.all())
+    if (name.rfind(prefix, 0) == 0) std::fprintf(stderr, " %s %.2f", name.c_str() + prefix.size(), seconds);
+  std::fprintf(stderr, "\n");
+}
+
 void printErptSummary(const RenderStats& stats) {
   const ErptStats& e = erptStatsOf(stats);
   auto pct = [](uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; };
@@ -63,10 +72,8 @@ void printErptSummary(const RenderStats& stats) {
                  (unsigned long long)e.discardedDeposits,
                  pct(uint64_t(e.discardedEnergy * 1e6), uint64_t((e.discardedEnergy + double(e.deposits) * e.depositEnergy) * 1e6)));
   printRejections("erpt", e);
-  std::fprintf(stderr, "erpt: %.2f Mrays/s in the chain loop; stage seconds:", e.erptSeconds > 0 ? double(e.rays) / e.erptSeconds * 1e-6 : 0.0);
-  for (const auto& [name, seconds] : stats.stages.all())
-    if (name.rfind("erpt ", 0) == 0) std::fprintf(stderr, " %s %.2f", name.c_str() + 5, seconds);
-  std::fprintf(stderr, "\n");
+  std::fprintf(stderr, "erpt: %.2f Mrays/s in the chain loop; ", e.erptSeconds > 0 ? double(e.rays) / e.erptSeconds * 1e-6 : 0.0);
+  printChainStageSeconds(stats);
 }
 
 }  // namespace erpt

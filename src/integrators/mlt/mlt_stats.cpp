@@ -33,10 +33,8 @@ void printMltSummary(const RenderStats& stats) {
                (unsigned long long)e.rays);
   printChainMoves("mlt", e);
   printRejections("mlt", e);
-  std::fprintf(stderr, "mlt: stage seconds:");
-  for (const auto& [name, seconds] : stats.stages.all())
-    if (name.rfind("erpt ", 0) == 0) std::fprintf(stderr, " %s %.2f", name.c_str() + 5, seconds);
-  std::fprintf(stderr, "\n");
+  std::fprintf(stderr, "mlt: ");
+  printChainStageSeconds(stats);
 }
 
 }  // namespace erpt
