@@ -66,10 +66,23 @@ struct VertexHistory {
 void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& slots, RayQueue& rays,
                     const HitQueue& hits, RayQueue& shadowRays, VertexHistory history, IndexRange range);
 
-// After the shadow stage: appends a seed for every contribution of this bounce (emission
-// found by the BSDF sample; unoccluded next-event connection), in slot order.
+// Seed recording, after the shadow stage: a seed for every contribution of this bounce
+// (emission found by the BSDF sample; unoccluded next-event connection), appended in slot
+// order. Three steps, so that the copying runs on every thread while the store keeps that
+// order: stageCountSeeds (any ranges) counts each slot's seeds and vertices, placeSeeds (once)
+// turns the counts into the rows they go to and grows the store, stageRecordSeeds (any
+// ranges) writes them.
+struct SeedPlacement {
+  // Per slot: its number of seeds, then (placeSeeds) the store row of its first seed; the
+  // same for its seeds' vertices.
+  std::vector<uint32_t> seed, vertex;
+};
+void stageCountSeeds(const PathSlotQueue& slots, const RayQueue& shadowRays, const VertexHistory& history,
+                     SeedPlacement& placement, IndexRange range);
+void placeSeeds(size_t live, SeedPlacement& placement, SeedStore& store);
 void stageRecordSeeds(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots, const HitQueue& hits,
-                      const RayQueue& shadowRays, const VertexHistory& history, size_t live, SeedStore& store);
+                      const RayQueue& shadowRays, const VertexHistory& history, const SeedPlacement& placement,
+                      SeedStore& store, IndexRange range);
 
 // Adds the next-event contribution of every slot whose shadow ray was not occluded.
 void stageShadowResolve(const RayQueue& shadowRays, const PathSlotQueue& slots, PathQueue& paths, IndexRange range);

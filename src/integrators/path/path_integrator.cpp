@@ -95,6 +95,7 @@ struct StageRunner {
 struct SeedRecording {
   SeedStore& seeds;
   VertexQueue& history;
+  SeedPlacement& placement;
 };
 
 // Starts samples first + j (j in r) in the free path ids freeIds[j], in slots firstSlot + j.
@@ -183,12 +184,20 @@ void traceSamples(const Tracer& tracer, const StageContext& ctx, const PathSampl
       tracer.occluded(w.shadowRays, r);
       stageShadowResolve(w.shadowRays, w.slots[cur], w.paths, r);
     });
-    auto start = std::chrono::steady_clock::now();
     if (rec) {
-      stageRecordSeeds(ctx, w.paths, w.slots[cur], w.hits, w.shadowRays, bounceHistory, live, rec->seeds);
-      run.times.add("record seeds", secondsSince(start));
-      start = std::chrono::steady_clock::now();
+      rec->placement.seed.resize(live);
+      rec->placement.vertex.resize(live);
+      run("record seeds", live, [&](IndexRange r) {
+        stageCountSeeds(w.slots[cur], w.shadowRays, bounceHistory, rec->placement, r);
+      });
+      const auto placing = std::chrono::steady_clock::now();
+      placeSeeds(live, rec->placement, rec->seeds);
+      run.times.add("record seeds", secondsSince(placing));
+      run("record seeds", live, [&](IndexRange r) {
+        stageRecordSeeds(ctx, w.paths, w.slots[cur], w.hits, w.shadowRays, bounceHistory, rec->placement, rec->seeds, r);
+      });
     }
+    const auto start = std::chrono::steady_clock::now();
     bounceHistory.base += live;
     const size_t kept =
         stageCompact(w.slots[cur], w.rays[cur], w.slots[1 - cur], w.rays[1 - cur], live, run.grain(live), w.ended.data());
@@ -212,6 +221,7 @@ struct PathTracerScratch::Impl {
   PathWavefront wavefront;
   BatchRadiance radiance;
   VertexQueue history;
+  SeedPlacement placement;
 };
 PathTracerScratch::PathTracerScratch() : impl(std::make_unique<Impl>()) {}
 PathTracerScratch::~PathTracerScratch() = default;
@@ -220,7 +230,7 @@ uint64_t traceSeedsInline(const Tracer& tracer, const StageContext& ctx, const P
                           PathTracerScratch& scratch, StageTimes& times) {
   std::atomic<uint64_t> rays{0};
   if (samples.count == 0) return 0;
-  SeedRecording rec{seeds, scratch.impl->history};
+  SeedRecording rec{seeds, scratch.impl->history, scratch.impl->placement};
   scratch.impl->radiance.resize(samples.count);
   traceSamples(tracer, ctx, samples, 0, samples.count, samples.count, scratch.impl->wavefront, StageRunner{false, times},
                scratch.impl->radiance, 0, &rec, rays);
@@ -262,7 +272,7 @@ bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
     const size_t n = std::min(kBatchPaths, total - first);
     batch.resize(n);
     if (out.seeds) {
-      SeedRecording rec{*out.seeds, recording.impl->history};
+      SeedRecording rec{*out.seeds, recording.impl->history, recording.impl->placement};
       traceSamples(setup.tracer, setup.ctx, samples, first, n, n, recording.impl->wavefront,
                    StageRunner{true, stats.stages}, batch, first, &rec, rayCount);
     } else {
