@@ -39,12 +39,14 @@ size_t stageChainTrace(const StepConfig& ctx, const ChainQueue& chains, const Ve
     // The walk ends at the far end of the regenerated range from where it started.
     const bool last = j == (walk > 0 ? proposals.regenLast[i] : proposals.regenFirst[i]);
     const int connectTo = proposals.connectTo[i];
-    // The current path's vertices j - 1, j, j + 1 (all a walk step looks at).
+    // The current path's vertices j - 1, j, j + 1 (all a walk step looks at), loaded only by
+    // the branches that read more than vertex j's kind (most steps do not).
     const size_t chainRow = i * kMaxChainVertices + size_t(j);
-    PathVertex window[3];
-    for (int w = 0; w < 3; ++w)
-      if (j - 1 + w >= 0 && j - 1 + w < n) loadPathVertex(chainVertices, chainRow - 1 + size_t(w), window[w]);
-    const PathVertex& expected = window[1];
+    auto loadWindow = [&](PathVertex* window) {
+      for (int w = 0; w < 3; ++w)
+        if (j - 1 + w >= 0 && j - 1 + w < n) loadPathVertex(chainVertices, chainRow - 1 + size_t(w), window[w]);
+    };
+    const uint8_t expectedKind = chainVertices.kind[chainRow];
     const Vec3 origin = rays.orgAt(k);
     const Vec3 dir = normalize(rays.dirAt(k));
     const size_t row = chainRow;
@@ -58,14 +60,14 @@ size_t stageChainTrace(const StepConfig& ctx, const ChainQueue& chains, const Ve
       continue;
     }
     if (hits.geomID[k] == kNoHit) {
-      if (!tracesToLight || expected.kind != kEnvironmentVertex) {
+      if (!tracesToLight || expectedKind != kEnvironmentVertex) {
         rejectProposal(proposals, rays, i, kRejectMissed, k);
         continue;
       }
       z.p = origin + dir * 1e6f;
       z.ns = z.ng = -dir;
       z.kind = kEnvironmentVertex;
-      z.emitter = expected.emitter;
+      z.emitter = chainVertices.emitter[chainRow];
       storePathVertex(proposalVertices, row, z);
       complete(proposals, rays, i, k);
       continue;
@@ -73,9 +75,9 @@ size_t stageChainTrace(const StepConfig& ctx, const ChainQueue& chains, const Ve
     const SurfacePoint sp = surfaceAt(scene, hits.primID[k], hits.u[k], hits.v[k]);
     const Material& m = scene.materials[size_t(sp.material)];
     setSurfaceVertex(z, sp, m);
-    z.kind = expected.kind;
+    z.kind = expectedKind;
 
-    if (expected.kind == kLightVertex) {
+    if (expectedKind == kLightVertex) {
       if (!tracesToLight || isBlack(mc.lights.emitted(sp, -dir))) {
         rejectProposal(proposals, rays, i, kRejectKindChanged, k);
         continue;
@@ -86,17 +88,19 @@ size_t stageChainTrace(const StepConfig& ctx, const ChainQueue& chains, const Ve
     }
     // Specular vertices need a Dirac lobe (plastic's coat has one too), non-specular ones a
     // non-Dirac component.
-    const bool kindMatches = expected.kind == kSpecularVertex     ? m.hasSpecular()
-                             : expected.kind == kNonSpecularVertex ? !m.isPureSpecular()
-                                                                   : false;
+    const bool kindMatches = expectedKind == kSpecularVertex     ? m.hasSpecular()
+                             : expectedKind == kNonSpecularVertex ? !m.isPureSpecular()
+                                                                  : false;
     if (!kindMatches) {
       rejectProposal(proposals, rays, i, kRejectKindChanged, k);
       continue;
     }
     storePathVertex(proposalVertices, row, z);
 
-    if (expected.kind == kSpecularVertex) {
+    if (expectedKind == kSpecularVertex) {
       // Follow the same lobe (reflection or transmission) as the current path.
+      PathVertex window[3];
+      loadWindow(window);
       Vec3 wo;
       if (last || !specularDirection(m, sp.shading.toLocal(-dir), reflectsAt(window, 1), wo)) {
         rejectProposal(proposals, rays, i, kRejectKindChanged, k);
@@ -113,6 +117,8 @@ size_t stageChainTrace(const StepConfig& ctx, const ChainQueue& chains, const Ve
     // A non-specular vertex.
     if (!last) {
       // Perturb the current path's direction here and walk on through the specular chain.
+      PathVertex window[3];
+      loadWindow(window);
       const PathVertex& next = window[1 + walk];
       const uint64_t key = chains.key[i];
       const uint32_t step = chains.step[i];
