@@ -78,7 +78,8 @@ struct Mutation {
   // Starts the proposals of the slots in `range` whose proposal chose this unit (kind set,
   // state walking, perturbSize set by the mutate stage): samples each perturbation from the
   // chain's path y with the proposal's size, writes the first ray, the film position, the
-  // walk direction and the regenerated range, or rejects (src/mutations/start_each.h).
+  // walk direction and the regenerated range, or rejects (start_each.h's loop; lens.cpp makes
+  // its eye rays in batches).
   void (*startRange)(const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                      ProposalQueue& proposals, RayQueue& rays, IndexRange range);
   // First vertex of the fixed tail (erpt_path.h): f reads vertices up to it (inclusive) when
