@@ -44,7 +44,8 @@ inline SurfacePoint triangleSurfaceAt(const TriangleSoup& m, uint32_t tri, float
 
 // The sphere coordinates (u, v) of a point near sphere i: its direction from the centre, in
 // the sphere's frame, as Mitsuba's texture coordinates. atan2 for both angles keeps the
-// polar angle accurate near the poles (acos loses half the digits there).
+// polar angle accurate near the poles (acos loses half the digits there). The tracer converts
+// its hits in vector lanes (kernels/sphere_coordinates.h), which agree to a few ulps.
 inline void sphereCoordinates(const SphereSet& s, uint32_t i, Vec3 p, float& u, float& v) {
   const Vec3 local = s.frame[i].toLocal(p - s.center(i));
   float phi = std::atan2(local.y, local.x);

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "kernels/sphere_coordinates.h"
 #include "models/surface.h"
 #include "tracer/tracer.h"
 #include "untraceable_rays.h"
@@ -52,14 +53,29 @@ struct Tracer::Impl {
       }
     }
     if (sphereGeometry == RTC_INVALID_GEOMETRY_ID) return;
+    // Each sphere hit's point in its sphere's frame, then the coordinates of a batch of them
+    // in vector lanes (sphereCoordinates' math).
+    constexpr size_t kBatch = 64;
+    uint32_t row[kBatch];
+    float x[kBatch], y[kBatch], z[kBatch], u[kBatch], v[kBatch];
+    size_t count = 0;
+    auto flush = [&] {
+      sphereCoordinatesOf(x, y, z, count, u, v);
+      for (size_t b = 0; b < count; ++b) hits.u[row[b]] = u[b], hits.v[row[b]] = v[b];
+      count = 0;
+    };
     for (size_t i = range.begin; i < range.end; ++i) {
       if (hits.geomID[i] != sphereGeometry) continue;
       const uint32_t sphere = hits.primID[i];
       const Vec3 o = rays.orgAt(i), d = rays.dirAt(i);
       const float t = refineSphereHit(*spheres, sphere, o, d, rays.tfar[i]);
-      sphereCoordinates(*spheres, sphere, o + d * t, hits.u[i], hits.v[i]);
+      const Vec3 local = spheres->frame[sphere].toLocal(o + d * t - spheres->center(sphere));
+      row[count] = uint32_t(i);
+      x[count] = local.x, y[count] = local.y, z[count] = local.z;
+      if (++count == kBatch) flush();
       hits.primID[i] = firstSpherePrimitive + sphere;
     }
+    if (count > 0) flush();
   }
 };
 
