@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/cdf_search.h"
+
 namespace erpt {
 
 namespace {
@@ -11,7 +13,7 @@ namespace {
 // Index of the interval of `cdf` (n + 1 increasing entries from 0 to 1) that holds u, and u's
 // position within it in [0, 1).
 size_t pickInterval(const float* cdf, size_t n, float u, float& within) {
-  size_t i = size_t(std::upper_bound(cdf, cdf + n + 1, u) - cdf);
+  size_t i = upperBoundIndex(cdf, n + 1, u);
   i = std::min(n - 1, i > 0 ? i - 1 : 0);
   // Skip empty intervals the search may land on (u at a boundary of zero-probability cells).
   while (i + 1 < n && !(cdf[i + 1] > cdf[i])) ++i;

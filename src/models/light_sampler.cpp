@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/cdf_search.h"
 #include "core/warp.h"
 
 namespace erpt {
@@ -85,6 +86,19 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     }
   }
   if (!cdf_.empty()) cdf_.back() = 1.0f;
+  triangleLights_.resize(items_.size());
+  for (size_t i = 0; i < items_.size(); ++i) {
+    TriangleLightQueue::Row row;  // zero corners and emitter -1 unless a triangle
+    if (items_[i].kind != Kind::Triangle) {
+      triangleLights_.setRow(i, row);
+      continue;
+    }
+    row.a = items_[i].a, row.b = items_[i].b, row.c = items_[i].c, row.normal = items_[i].normal;
+    row.pdfArea = itemProbability(i) / items_[i].area;  // as sampleTriangle computes it
+    row.emitter = scene.emitterOf(items_[i].index);
+    row.radiance = scene.emitters[size_t(row.emitter)].radiance;
+    triangleLights_.setRow(i, row);
+  }
 }
 
 Color LightSampler::emitted(const SurfacePoint& sp, Vec3 w) const {
@@ -216,25 +230,20 @@ bool LightSampler::sampleSphere(const Item& item, float prob, Vec3 ref, float u1
   return true;
 }
 
+size_t LightSampler::pickIndex(double uPick) const {
+  return std::min(upperBoundIndex(cdf_.data(), cdf_.size(), uPick), cdf_.size() - 1);
+}
+
 const LightSampler::Item& LightSampler::pick(double uPick, float& probability) const {
-  const size_t i = std::min(size_t(std::upper_bound(cdf_.begin(), cdf_.end(), uPick) - cdf_.begin()), cdf_.size() - 1);
-  probability = cdf_[i] - (i > 0 ? cdf_[i - 1] : 0.0f);
+  const size_t i = pickIndex(uPick);
+  probability = itemProbability(i);
   return items_[i];
 }
 
-bool LightSampler::pickTriangle(double uPick, TriangleLight& out) const {
+bool LightSampler::pickTriangle(double uPick, uint32_t& row) const {
   if (cdf_.empty()) return false;
-  float prob;
-  const Item& item = pick(uPick, prob);
-  if (item.kind != Kind::Triangle) return false;
-  out.a = item.a;
-  out.b = item.b;
-  out.c = item.c;
-  out.normal = item.normal;
-  out.pdfArea = prob / item.area;  // as sampleTriangle computes it
-  out.emitter = scene_.emitterOf(item.index);
-  out.radiance = scene_.emitters[out.emitter].radiance;
-  return true;
+  row = uint32_t(pickIndex(uPick));
+  return triangleLights_.emitter[row] >= 0;
 }
 
 bool LightSampler::sample(Vec3 ref, double uPick, float u1, float u2, LightSample& out) const {

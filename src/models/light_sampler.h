@@ -12,9 +12,22 @@
 
 #include <vector>
 
+#include "core/soa.h"
 #include "models/surface.h"
 
+// A triangle light as sampleTriangle reads it, one row per light item.
+#define ERPT_TRIANGLE_LIGHT_FIELDS(F, V, C)                                                         \
+  V(a, "corner 0")                                                                                  \
+  V(b, "corner 1")                                                                                  \
+  V(c, "corner 2")                                                                                  \
+  V(normal, "unit face normal")                                                                     \
+  C(radiance, "emitted radiance")                                                                   \
+  F(float, pdfArea, 0, "area density of sampling a point of it, p_light / area")                    \
+  F(int32_t, emitter, -1, "index into Scene::emitters (-1: the item is not a triangle)")
+
 namespace erpt {
+
+ERPT_SOA_STRUCT(TriangleLightQueue, ERPT_TRIANGLE_LIGHT_FIELDS)
 
 struct LightSample {
   Vec3 position;     // on the emitter (for the environment: far along `direction`)
@@ -75,16 +88,12 @@ class LightSampler {
   const Scene& scene() const { return scene_; }
 
   // sample()'s light choice when it falls on a triangle, for kernels that finish the sample
-  // themselves (shade_path_diffuse.cpp): the triangle's corners and unit normal, the area
-  // density p_light / area, the radiance and the emitter. False when uPick picks any other
-  // kind of light.
-  struct TriangleLight {
-    Vec3 a, b, c, normal;
-    float pdfArea;
-    Color radiance;
-    int emitter;  // index into Scene::emitters
-  };
-  bool pickTriangle(double uPick, TriangleLight& out) const;
+  // themselves (shade_path_diffuse.cpp): the light's row in triangleLights(). False when
+  // uPick picks any other kind of light.
+  bool pickTriangle(double uPick, uint32_t& row) const;
+  // One row per light item (zero rows for items that are not triangles), so that kernels can
+  // gather a packet's lights in vector lanes.
+  const TriangleLightQueue& triangleLights() const { return triangleLights_; }
   // Whether pickTriangle can ever succeed (some light is a triangle), so that kernels on
   // scenes lit only otherwise need not try it for every hit.
   bool hasTriangleLights() const { return hasTriangleLights_; }
@@ -129,6 +138,8 @@ class LightSampler {
   float beamDensity() const;
   // The item sample() and sampleEmission() take for uPick, and its probability.
   const Item& pick(double uPick, float& probability) const;
+  size_t pickIndex(double uPick) const;  // pick's item; cdf_ must not be empty
+  float itemProbability(size_t i) const { return cdf_[i] - (i > 0 ? cdf_[i - 1] : 0.0f); }
   // The probability of picking a primitive's light (0 for one that does not emit).
   float pickProbability(uint32_t primitive) const;
   bool sampleTriangle(const Item& item, float prob, Vec3 ref, float u1, float u2, LightSample& out) const;
@@ -138,6 +149,7 @@ class LightSampler {
   const Scene& scene_;
   std::vector<Item> items_;
   std::vector<float> cdf_;  // normalized, cdf_.back() == 1
+  TriangleLightQueue triangleLights_;  // row i: items_[i]'s corners, normal, radiance, emitter
   std::vector<float> primitiveProbability_;  // per world primitive id (0 if not emissive; instanced ids are past it)
   std::vector<float> emitterProbability_;   // per point / environment emitter
   std::vector<int64_t> emitterPrimitive_;   // per emitter: one of its light-sampled primitives, -1 none

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/cdf_search.h"
+
 namespace erpt {
 
 namespace {
@@ -44,7 +46,7 @@ float PixelFilter::sampleOffset(float u) const {
     case FilterKind::Tent:
       return u < 0.5f ? -1.0f + std::sqrt(2 * u) : 1.0f - std::sqrt(2 * (1 - u));
     default: {
-      size_t i = size_t(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
+      size_t i = upperBoundIndex(cdf_.data(), cdf_.size(), u);
       i = std::clamp<size_t>(i, 1, kCdfSize);
       float c0 = cdf_[i - 1], c1 = cdf_[i];
       float t = c1 > c0 ? (u - c0) / (c1 - c0) : 0.5f;

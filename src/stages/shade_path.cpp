@@ -29,8 +29,8 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
   const bool vector = ctx.vectorShading && ctx.lights.hasTriangleLights();
   DiffuseShadePacket diffuse;
   for (size_t k = range.begin; k < range.end; ++k) {
-    if (vector && diffuse.add(ctx, paths, slots, rays, hits, k)) {
-      if (diffuse.full()) diffuse.shade(ctx, paths, slots, rays, shadowRays, history);
+    if (vector && diffuse.add(ctx, paths, slots, hits, k)) {
+      if (diffuse.full()) diffuse.shade(ctx, paths, slots, rays, hits, shadowRays, history);
       continue;
     }
     const uint32_t id = slots.path[k];
@@ -138,7 +138,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     setRay(rays, k, offsetOrigin(sp.position, sp.geometricNormal, wo), wo, 0.0f, std::numeric_limits<float>::infinity());
     slots.alive[k] = 1;
   }
-  diffuse.shade(ctx, paths, slots, rays, shadowRays, history);
+  diffuse.shade(ctx, paths, slots, rays, hits, shadowRays, history);
 }
 
 void stageShadowResolve(const RayQueue& shadowRays, const PathSlotQueue& slots, PathQueue& paths, IndexRange range) {

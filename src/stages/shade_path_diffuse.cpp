@@ -9,6 +9,7 @@
 #include <xsimd/xsimd.hpp>
 
 #include "core/rng.h"
+#include "kernels/lane_gather.h"
 #include "kernels/surface_vertex.h"
 #include "kernels/uniform_lanes.h"
 #include "models/surface.h"
@@ -20,6 +21,8 @@ namespace {
 
 using batch = xsimd::batch<float>;
 using lanes = batch::batch_bool_type;
+using indices = xsimd::batch<int32_t>;
+static_assert(indices::size == batch::size, "one index lane per float lane");
 constexpr size_t kLanes = batch::size;
 static_assert(DiffuseShadePacket::kCapacity % kLanes == 0, "a packet is whole batches");
 
@@ -77,7 +80,7 @@ V3 cosineHemisphere(const batch& u1, const batch& u2) {
 }  // namespace
 
 bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots,
-                             const RayQueue& rays, const HitQueue& hits, size_t k) {
+                             const HitQueue& hits, size_t k) {
   const uint32_t geom = hits.geomID[k];
   if (geom == kNoHit || geom == kRefusedRay) return false;
   const TriangleSoup& mesh = ctx.scene.mesh;
@@ -89,35 +92,19 @@ bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, co
   const uint32_t depth = paths.depth[id];
   if (ctx.maxDepth >= 0 && depth >= uint32_t(ctx.maxDepth)) return false;
   const uint64_t key = paths.key[id];
-  LightSampler::TriangleLight light;
+  uint32_t light;
   if (!ctx.lights.pickTriangle(uniformDouble(key, bounceDim(depth, kLightPick)), light)) return false;
 
   const size_t j = count_++;
-  slot_[j] = uint32_t(k);
-  triangle_[j] = tri;
-  lightEmitter_[j] = light.emitter;
-  auto put3 = [&](int first, Vec3 v) { in_[first][j] = v.x, in_[first + 1][j] = v.y, in_[first + 2][j] = v.z; };
-  in_[kB1][j] = hits.u[k];
-  in_[kB2][j] = hits.v[k];
-  const uint32_t i0 = mesh.v0[tri], i1 = mesh.v1[tri], i2 = mesh.v2[tri];
-  put3(kP0x, mesh.position(i0));
-  put3(kP1x, mesh.position(i1));
-  put3(kP2x, mesh.position(i2));
-  const bool smooth = mesh.smooth[tri] != 0;
-  in_[kSmooth][j] = smooth ? 1.0f : 0.0f;
-  put3(kN0x, smooth ? mesh.normal(i0) : Vec3(0.0f));
-  put3(kN1x, smooth ? mesh.normal(i1) : Vec3(0.0f));
-  put3(kN2x, smooth ? mesh.normal(i2) : Vec3(0.0f));
-  put3(kDirX, rays.dirAt(k));
-  put3(kThroughputR, paths.throughputAt(id));
-  put3(kReflectanceR, m.reflectance.value);
+  slot_[j] = int32_t(k);
+  path_[j] = int32_t(id);
+  triangle_[j] = int32_t(tri);
+  light_[j] = int32_t(light);
+  in_[kSmooth][j] = mesh.smooth[tri] != 0 ? 1.0f : 0.0f;
+  in_[kReflectanceR][j] = m.reflectance.value.x;
+  in_[kReflectanceG][j] = m.reflectance.value.y;
+  in_[kReflectanceB][j] = m.reflectance.value.z;
   in_[kTwoSided][j] = m.twoSided ? 1.0f : 0.0f;
-  put3(kLightAx, light.a);
-  put3(kLightBx, light.b);
-  put3(kLightCx, light.c);
-  put3(kLightNx, light.normal);
-  in_[kLightPdfArea][j] = light.pdfArea;
-  put3(kLightR, light.radiance);
   // The light point's and the bounce's numbers are drawn in lanes by shade().
   for (int d = 0; d < kLaneDraws; ++d)
     drawOffset_[d][j] = dimensionOffset(key, bounceDim(depth, kLaneDrawDims[d]));
@@ -126,47 +113,70 @@ bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, co
 }
 
 void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSlotQueue& slots, RayQueue& rays,
-                               RayQueue& shadowRays, VertexHistory history) {
+                               const HitQueue& hits, RayQueue& shadowRays, VertexHistory history) {
   if (count_ == 0) return;
   for (int d = 0; d < kLaneDraws; ++d) uniformFloatsAt(drawOffset_[d], count_, in_[kULight1 + d]);
-  // Rows past count_ hold stale or unset values; their lanes are computed and never stored.
+  // Rows past count_, up to a whole batch, gather row 0's queue entries: their lanes are
+  // computed and never stored (their other inputs are stale or unset).
+  for (size_t j = count_; j % kLanes != 0; ++j)
+    slot_[j] = slot_[0], path_[j] = path_[0], triangle_[j] = triangle_[0], light_[j] = light_[0];
+  const TriangleSoup& mesh = ctx.scene.mesh;
+  const bool meshHasNormals = mesh.nx.size() == mesh.vertexCount();  // the loader gives every vertex one
+  const TriangleLightQueue& lights = ctx.lights.triangleLights();
+  const auto* v0 = reinterpret_cast<const int32_t*>(mesh.v0.data());
+  const auto* v1 = reinterpret_cast<const int32_t*>(mesh.v1.data());
+  const auto* v2 = reinterpret_cast<const int32_t*>(mesh.v2.data());
   for (size_t i = 0; i < count_; i += kLanes) {
     auto get = [&](int c) { return batch::load_aligned(&in_[c][i]); };
-    auto get3 = [&](int first) { return V3{get(first), get(first + 1), get(first + 2)}; };
     auto put = [&](int c, const batch& b) { b.store_aligned(&out_[c][i]); };
     auto put3 = [&](int first, const V3& v) { put(first, v.x), put(first + 1, v.y), put(first + 2, v.z); };
     auto putMask = [&](int c, const lanes& m) { put(c, xsimd::select(m, batch(1.0f), batch(0.0f))); };
+    auto gather = [](const auto& column, const indices& at) { return gatherLanes(column.data(), at); };
+    auto gather3 = [&](const auto& x, const auto& y, const auto& z, const indices& at) {
+      return V3{gather(x, at), gather(y, at), gather(z, at)};
+    };
+    const indices slot = indices::load_aligned(&slot_[i]), path = indices::load_aligned(&path_[i]);
+    const indices triangle = indices::load_aligned(&triangle_[i]), light = indices::load_aligned(&light_[i]);
 
     // The surface point (triangleSurfaceAt).
-    const batch b1 = get(kB1), b2 = get(kB2), b0 = 1.0f - b1 - b2;
-    const V3 p0 = get3(kP0x), p1 = get3(kP1x), p2 = get3(kP2x);
+    const batch b1 = gather(hits.u, slot), b2 = gather(hits.v, slot), b0 = 1.0f - b1 - b2;
+    const indices i0 = gatherLanes(v0, triangle), i1 = gatherLanes(v1, triangle), i2 = gatherLanes(v2, triangle);
+    const V3 p0 = gather3(mesh.px, mesh.py, mesh.pz, i0), p1 = gather3(mesh.px, mesh.py, mesh.pz, i1),
+             p2 = gather3(mesh.px, mesh.py, mesh.pz, i2);
     const V3 position = p0 * b0 + p1 * b1 + p2 * b2;
     const V3 face = cross(p1 - p0, p2 - p0);
     const V3 ng = face / xsimd::sqrt(dot(face, face));
-    const V3 interpolated = get3(kN0x) * b0 + get3(kN1x) * b1 + get3(kN2x) * b2;
+    const V3 zero{batch(0.0f), batch(0.0f), batch(0.0f)};
+    const V3 interpolated = meshHasNormals ? gather3(mesh.nx, mesh.ny, mesh.nz, i0) * b0 +
+                                                 gather3(mesh.nx, mesh.ny, mesh.nz, i1) * b1 +
+                                                 gather3(mesh.nx, mesh.ny, mesh.nz, i2) * b2
+                                           : zero;
     const batch interpolatedLength = xsimd::sqrt(dot(interpolated, interpolated));
     const lanes useInterpolated = (get(kSmooth) != batch(0.0f)) & (interpolatedLength > batch(0.0f));
     const LaneFrame frame(select(useInterpolated, interpolated / interpolatedLength, ng));
-    const V3 dir = get3(kDirX);
+    const V3 dir = gather3(rays.dirX, rays.dirY, rays.dirZ, slot);
     const batch wiZ = -dot(dir, frame.n);
     // sideFlip: the front, or the back of a two-sided material seen as its front.
     const batch flip = xsimd::select(wiZ > batch(0.0f), batch(1.0f),
                                      xsimd::select((get(kTwoSided) != batch(0.0f)) & (wiZ < batch(0.0f)), batch(-1.0f),
                                                    batch(0.0f)));
     const lanes seen = flip != batch(0.0f);
-    const V3 throughput = get3(kThroughputR), reflectance = get3(kReflectanceR);
+    const V3 throughput = gather3(paths.throughputR, paths.throughputG, paths.throughputB, path);
+    const V3 reflectance{get(kReflectanceR), get(kReflectanceG), get(kReflectanceB)};
 
     // Next-event estimation (connectToLight with sampleTriangle and the diffuse lobe).
     const batch u1 = get(kULight1), u2 = get(kULight2);
     const lanes lower = u1 < u2;
     const batch lb1 = xsimd::select(lower, u1 * 0.5f, u1 - u2 * 0.5f);
     const batch lb2 = xsimd::select(lower, u2 - u1 * 0.5f, u2 * 0.5f);
-    const V3 lightPoint = get3(kLightAx) * (1.0f - lb1 - lb2) + get3(kLightBx) * lb1 + get3(kLightCx) * lb2;
+    const V3 lightPoint = gather3(lights.aX, lights.aY, lights.aZ, light) * (1.0f - lb1 - lb2) +
+                          gather3(lights.bX, lights.bY, lights.bZ, light) * lb1 +
+                          gather3(lights.cX, lights.cY, lights.cZ, light) * lb2;
     const V3 toLight = lightPoint - position;
     const batch dist2 = dot(toLight, toLight);
     const V3 lightDir = toLight / xsimd::sqrt(dist2);
-    const batch cosLight = -dot(get3(kLightNx), lightDir);
-    const batch lightPdf = get(kLightPdfArea) * dist2 / cosLight;
+    const batch cosLight = -dot(gather3(lights.normalX, lights.normalY, lights.normalZ, light), lightDir);
+    const batch lightPdf = gather(lights.pdfArea, light) * dist2 / cosLight;
     const batch cosOut = dot(lightDir, frame.n) * flip;
     const V3 f = reflectance * (cosOut * kInvPi);
     const batch bsdfPdf = cosOut * kInvPi;
@@ -174,7 +184,8 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
         seen & (dist2 > batch(0.0f)) & (cosLight > batch(0.0f)) & (cosOut > batch(0.0f)) & ~isBlack(f);
     const batch a2 = lightPdf * lightPdf, p2b = bsdfPdf * bsdfPdf;
     const batch mis = xsimd::select(a2 + p2b > batch(0.0f), a2 / (a2 + p2b), batch(0.0f));
-    const V3 contribution = f * get3(kLightR) * (mis / lightPdf);
+    const V3 radiance = gather3(lights.radianceR, lights.radianceG, lights.radianceB, light);
+    const V3 contribution = f * radiance * (mis / lightPdf);
     putMask(kNeeOk, connects);
     put3(kNgx, ng);
     put3(kNsx, frame.n);
@@ -204,16 +215,15 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
 
   auto get3 = [&](int first, size_t j) { return Vec3(out_[first][j], out_[first + 1][j], out_[first + 2][j]); };
   const bool recording = history.vertices != nullptr;
-  const TriangleSoup& mesh = ctx.scene.mesh;
   for (size_t j = 0; j < count_; ++j) {
-    const size_t k = slot_[j];
+    const size_t k = size_t(slot_[j]);
     const uint32_t id = slots.path[k];
     const size_t vertex = history.base + k;
     slots.alive[k] = 0;
     if (recording) {  // the hit, as setSurfaceVertex writes it (a diffuse, non-emitting triangle)
-      const uint32_t tri = triangle_[j];
+      const uint32_t tri = uint32_t(triangle_[j]);
       const uint32_t i0 = mesh.v0[tri], i1 = mesh.v1[tri], i2 = mesh.v2[tri];
-      const float b1 = in_[kB1][j], b2 = in_[kB2][j], b0 = 1 - b1 - b2;
+      const float b1 = hits.u[k], b2 = hits.v[k], b0 = 1 - b1 - b2;
       VertexQueue::Row v;  // the whole row: pdfForward 0 and the parent link are written too
       v.p = get3(kPx, j);
       v.ns = get3(kNsx, j);
@@ -234,11 +244,11 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
       if (recording) {
         slots.neeWeight[k] = out_[kNeeMis][j];
         slots.neeBsdfPdf[k] = out_[kNeeBsdfPdf][j];
-        slots.neeLightPdf[k] = in_[kLightPdfArea][j];
+        slots.neeLightPdf[k] = lights.pdfArea[size_t(light_[j])];
         slots.neeLightKind[k] = kLightVertex;
-        slots.neeLightEmitter[k] = lightEmitter_[j];
+        slots.neeLightEmitter[k] = lights.emitter[size_t(light_[j])];
         slots.neeLightSet(k, get3(kLightPx, j));
-        slots.neeLightNSet(k, Vec3(in_[kLightNx][j], in_[kLightNy][j], in_[kLightNz][j]));
+        slots.neeLightNSet(k, lights.normalAt(size_t(light_[j])));
       }
     } else {
       slots.neeSet(k, Color(0.0f));

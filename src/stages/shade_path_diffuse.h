@@ -21,27 +21,26 @@ class DiffuseShadePacket {
   // Takes slot k when its hit qualifies: a non-emitting mesh triangle whose
   // material is diffuse without textures or frame maps, below the depth limit, and the light
   // choice of its random numbers falls on a triangle. False: the scalar body shades it.
-  bool add(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots, const RayQueue& rays,
-           const HitQueue& hits, size_t k);
+  bool add(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots, const HitQueue& hits,
+           size_t k);
   bool full() const { return count_ == kCapacity; }
   // Shades every slot taken and empties the packet. When recording seeds, also writes each
   // hit to the vertex history and fills the slot's seed columns, as stageShadePath does.
-  void shade(const StageContext& ctx, PathQueue& paths, PathSlotQueue& slots, RayQueue& rays, RayQueue& shadowRays,
-             VertexHistory history);
+  void shade(const StageContext& ctx, PathQueue& paths, PathSlotQueue& slots, RayQueue& rays, const HitQueue& hits,
+             RayQueue& shadowRays, VertexHistory history);
 
  private:
-  // Inputs and outputs, one column per quantity, one row per slot taken.
+  // What add() decides or has at hand, one row per slot taken. The rest of the inputs (the
+  // hit, the triangle's corners and normals, the ray, the throughput, the light) shade()
+  // gathers from their queues in the lanes, by these indices.
+  alignas(64) int32_t slot_[kCapacity] = {};      // the slot in the ray, hit and slot queues
+  alignas(64) int32_t path_[kCapacity] = {};      // its path in the path queue
+  alignas(64) int32_t triangle_[kCapacity] = {};  // the triangle hit
+  alignas(64) int32_t light_[kCapacity] = {};     // the light's row in LightSampler::triangleLights()
   enum In {
-    kB1, kB2,                                          // the hit's barycentrics
-    kP0x, kP0y, kP0z, kP1x, kP1y, kP1z, kP2x, kP2y, kP2z,  // the triangle's corners
-    kSmooth,                                           // 1: interpolate the vertex normals
-    kN0x, kN0y, kN0z, kN1x, kN1y, kN1z, kN2x, kN2y, kN2z,
-    kDirX, kDirY, kDirZ,                               // the ray that hit
-    kThroughputR, kThroughputG, kThroughputB,
+    kSmooth,  // 1: interpolate the vertex normals
     kReflectanceR, kReflectanceG, kReflectanceB,
     kTwoSided,
-    kLightAx, kLightAy, kLightAz, kLightBx, kLightBy, kLightBz, kLightCx, kLightCy, kLightCz,
-    kLightNx, kLightNy, kLightNz, kLightPdfArea, kLightR, kLightG, kLightB,
     kULight1, kULight2, kUBsdf1, kUBsdf2,  // drawn in lanes from drawOffset_, in this order
     kInCount
   };
@@ -57,9 +56,6 @@ class DiffuseShadePacket {
   };
   alignas(64) float in_[kInCount][kCapacity] = {};
   alignas(64) float out_[kOutCount][kCapacity] = {};
-  uint32_t slot_[kCapacity] = {};
-  uint32_t triangle_[kCapacity] = {};
-  int32_t lightEmitter_[kCapacity] = {};
   // The four numbers drawn in lanes (uniformFloatsAt), as their streams' dimensionOffset.
   static constexpr int kLaneDraws = 4;
   static constexpr BounceDim kLaneDrawDims[kLaneDraws] = {kLight1, kLight2, kBsdf1, kBsdf2};

@@ -131,7 +131,7 @@ TEST(ShadeDiffuse, VectorKernelMatchesTheScalarBodySlotBySlot) {
     DiffuseShadePacket probe;
     for (size_t k = 0; k < n; ++k) {
       if (probe.full()) probe = DiffuseShadePacket();
-      taken += probe.add(ctx, vector.paths, vector.slots, vector.rays, vector.hits, k) ? 1 : 0;
+      taken += probe.add(ctx, vector.paths, vector.slots, vector.hits, k) ? 1 : 0;
     }
   }
   EXPECT_GT(taken, n * 8 / 10);
