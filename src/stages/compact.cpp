@@ -32,10 +32,14 @@ size_t stageCompact(const PathSlotQueue& slots, const RayQueue& rays, PathSlotQu
         continue;
       }
       // Only the path id and the ray move: the other slot columns are per-bounce scratch
-      // that the next shade pass rewrites.
+      // that the next shade pass rewrites, and a ray's time, mask, id and flags stay as
+      // prepareRays set them in both queues (no stage changes them).
       outSlots.path[out] = slots.path[k];
       outSlots.alive[out] = 1;
-      outRays.copyRow(out, rays, k);
+      outRays.orgSet(out, rays.orgAt(k));
+      outRays.dirSet(out, rays.dirAt(k));
+      outRays.tnear[out] = rays.tnear[k];
+      outRays.tfar[out] = rays.tfar[k];
       ++out;
     }
   });
