@@ -1,47 +1,16 @@
-// AVX2 has no 64-bit multiply; mix64's two multiplies by constants are built from three
-// 32x32 -> 64-bit ones each (the high half of a product of high halves falls off the low
-// 64 bits). Builds without AVX2 take the scalar mix64.
+// The lanes are kernels/mix64_lanes.h; builds without AVX2 take the scalar mix64.
 #include "kernels/uniform_lanes.h"
 
 #include "core/rng.h"
-
-#if defined(__AVX2__)
-#include <immintrin.h>
-#endif
+#include "kernels/mix64_lanes.h"
 
 namespace erpt {
-
-namespace {
-
-#if defined(__AVX2__)
-// The low 64 bits of a * b in each lane.
-__m256i mulLow64(__m256i a, uint64_t b) {
-  const __m256i bLow = _mm256_set1_epi64x(int64_t(b & 0xffffffffu)), bHigh = _mm256_set1_epi64x(int64_t(b >> 32));
-  const __m256i cross = _mm256_add_epi64(_mm256_mul_epu32(_mm256_srli_epi64(a, 32), bLow), _mm256_mul_epu32(a, bHigh));
-  return _mm256_add_epi64(_mm256_mul_epu32(a, bLow), _mm256_slli_epi64(cross, 32));
-}
-
-// mix64 of rng.h, lane by lane.
-__m256i mix64Lanes(__m256i z) {
-  z = _mm256_add_epi64(z, _mm256_set1_epi64x(int64_t(0x9e3779b97f4a7c15ull)));
-  z = mulLow64(_mm256_xor_si256(z, _mm256_srli_epi64(z, 30)), 0xbf58476d1ce4e5b9ull);
-  z = mulLow64(_mm256_xor_si256(z, _mm256_srli_epi64(z, 27)), 0x94d049bb133111ebull);
-  return _mm256_xor_si256(z, _mm256_srli_epi64(z, 31));
-}
-#endif
-
-}  // namespace
 
 void uniformFloatsAt(const uint64_t* offset, size_t n, float* out) {
   size_t j = 0;
 #if defined(__AVX2__)
-  // The top 24 bits of each lane, moved to the low dwords of the 128-bit half and converted.
-  const __m256i lowDwords = _mm256_setr_epi32(0, 2, 4, 6, 1, 3, 5, 7);
-  for (; j + 4 <= n; j += 4) {
-    const __m256i bits = mix64Lanes(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(offset + j)));
-    const __m256i top = _mm256_permutevar8x32_epi32(_mm256_srli_epi64(bits, 40), lowDwords);
-    _mm_storeu_ps(out + j, _mm_mul_ps(_mm_cvtepi32_ps(_mm256_castsi256_si128(top)), _mm_set1_ps(0x1p-24f)));
-  }
+  for (; j + 4 <= n; j += 4)
+    _mm_storeu_ps(out + j, floatsFromBitsLanes(mix64Lanes(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(offset + j)))));
 #endif
   for (; j < n; ++j) out[j] = floatFromBits(mix64(offset[j]));
 }

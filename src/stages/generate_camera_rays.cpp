@@ -2,6 +2,7 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "kernels/pixel_strata.h"
 #include "stages/stages.h"
 #include "tracer/tracer.h"
 
@@ -32,22 +33,17 @@ void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixels, co
     filmX = scratch.data() - range.begin;
     filmY = scratch.data() + range.size() - range.begin;
   }
+  // Sample s takes a stratum in x and one in y, each by its own per-pixel permutation (a
+  // Latin hypercube). Permuting x too makes every sample uniform over the pixel on its own,
+  // so the first k of the spp samples are an unbiased render at k spp (sample passes).
+  // Samples from spp on (PMC-ER's pool under a time budget) stratify block by block: block
+  // b = s / spp is another Latin hypercube of spp strata with its own permutations.
+  pixelStrata(ctx.seed, spp, kDimFilmX, kDimFilmY, pixels + range.begin, samples + range.begin, range.size(),
+              filmX + range.begin, filmY + range.begin);
   for (size_t i = range.begin; i < range.end; ++i) {
-    uint32_t pixel = pixels[i], s = samples[i];
-    uint64_t key = sampleKey(ctx.seed, pixel, s);
-    // Sample s takes a stratum in x and one in y, each by its own per-pixel permutation (a
-    // Latin hypercube). Permuting x too makes every sample uniform over the pixel on its own,
-    // so the first k of the spp samples are an unbiased render at k spp (sample passes).
-    // Samples from spp on (PMC-ER's pool under a time budget) stratify block by block: block
-    // b = s / spp is another Latin hypercube of spp strata with its own permutations.
-    const uint32_t block = s / spp;
-    s %= spp;
-    const uint32_t keyX = uint32_t(streamKey(ctx.seed, pixel, ~1ull - 2 * uint64_t(block))),
-                   keyY = uint32_t(streamKey(ctx.seed, pixel, ~0ull - 2 * uint64_t(block)));
-    float ux = (float(permuteIndex(s, spp, keyX)) + uniformFloat(key, kDimFilmX)) / float(spp);
-    float uy = (float(permuteIndex(s, spp, keyY)) + uniformFloat(key, kDimFilmY)) / float(spp);
-    filmX[i] = float(pixel % uint32_t(ctx.width)) + 0.5f + ctx.filter.sampleOffset(std::min(ux, 0x1.fffffep-1f));
-    filmY[i] = float(pixel / uint32_t(ctx.width)) + 0.5f + ctx.filter.sampleOffset(std::min(uy, 0x1.fffffep-1f));
+    const uint32_t pixel = pixels[i];
+    filmX[i] = float(pixel % uint32_t(ctx.width)) + 0.5f + ctx.filter.sampleOffset(std::min(filmX[i], 0x1.fffffep-1f));
+    filmY[i] = float(pixel / uint32_t(ctx.width)) + 0.5f + ctx.filter.sampleOffset(std::min(filmY[i], 0x1.fffffep-1f));
   }
   const size_t b = range.begin;
   ctx.camera.generateRays(filmX + b, filmY + b, range.size(), rays.dirX.data() + b, rays.dirY.data() + b,
