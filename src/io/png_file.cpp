@@ -44,6 +44,9 @@ bool writePng8(const std::string& path, int width, int height, const uint8_t* rg
   png.width = png_uint_32(width);
   png.height = png_uint_32(height);
   png.format = PNG_FORMAT_RGB;
+  // Speed over size: at 1024x1024 the default compression took 0.33 s, longer than the EXR
+  // beside it, on the critical path at the end of every render.
+  png.flags = PNG_IMAGE_FLAG_FAST;
   if (!png_image_write_to_file(&png, path.c_str(), 0, rgb, 0, nullptr)) {
     error = png.message;
     return false;
