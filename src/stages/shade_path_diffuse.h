@@ -2,9 +2,10 @@
 // most of its shading on plain diffuse triangles lit by triangle lights, and the scalar body
 // (stageShadePath) runs their surface reconstruction, light sample, BSDF evaluation, MIS
 // weight and cosine-weighted bounce one path at a time, each a chain of dependent divisions,
-// square roots and sin/cos. A packet collects such slots (their inputs gathered into columns),
-// then shades them all with xsimd, 8 paths per instruction with AVX2, and scatters the
-// results: the same estimator as the scalar body, the same random numbers, rounding aside.
+// square roots and sin/cos. A packet collects such slots (their queue indices), then gathers
+// their inputs in the lanes and shades them all with xsimd, 8 paths per instruction with AVX2,
+// and scatters the results: the same estimator as the scalar body, the same random numbers,
+// rounding aside.
 #pragma once
 
 #include <cstddef>
