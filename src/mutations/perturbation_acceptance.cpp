@@ -8,6 +8,34 @@
 
 namespace erpt {
 
+namespace {
+
+// A proposal whose f is zero or not finite in the unit's measure cannot be accepted.
+bool rejectsZero(ProposalQueue& proposals, size_t i, float lz) {
+  if (lz > 0 && std::isfinite(lz)) return false;
+  proposals.reason[i] = kRejectZero;
+  return true;
+}
+
+// q from lum(f(z)) = lz, lum(f(y)) = ly and T(z->y) / T(y->z) = ratio, times a(z) / a(y) when
+// the choice depends on the film position; the colour a deposit of z carries.
+void decide(ProposalQueue& proposals, size_t i, float lz, float ly, float ratio, Acceptance& a) {
+  ratio *= proposals.selection[i];
+  if (!(ly > 0) || !std::isfinite(ly)) {
+    // A chain must never stand on a path of zero density in the mutation's measure (it would
+    // accept everything); seeds are checked when chains start, this is the guard.
+    proposals.reason[i] = kRejectCurrentZero;
+  } else if (!(ratio > 0) || !std::isfinite(ratio)) {
+    proposals.reason[i] = kRejectIrreversible;
+  } else {
+    a.q = std::min(1.0f, lz / ly * ratio);
+    a.fz = a.fz / lz;
+    a.fzLum = lz;
+  }
+}
+
+}  // namespace
+
 Acceptance perturbationAcceptance(const StepConfig& ctx, const AcceptSlot& s) {
   ChainQueue& chains = s.chains;
   ProposalQueue& proposals = s.proposals;
@@ -42,32 +70,35 @@ Acceptance perturbationAcceptance(const StepConfig& ctx, const AcceptSlot& s) {
     chains.tailKind[i] = measure;
   }
   const float lz = luminance(a.fz);
-  if (!(lz > 0 && std::isfinite(lz))) {
-    proposals.reason[i] = kRejectZero;
-    return a;
-  }
+  if (rejectsZero(proposals, i, lz)) return a;
   // f(y) in this measure: cached from the step that made y current, if it was in the same
   // measure (always, under the paper's strategy).
   if (chains.fKind[i] != measure) {
     chains.fLum[i] = luminance(unit.contribution(ctx.measure, y, n, chains.filmX[i], chains.filmY[i], &tail));
     chains.fKind[i] = measure;
   }
-  const float ly = chains.fLum[i];
   const CurrentPath py{y, kinds, n, chains.filmX[i], chains.filmY[i]};
   const CurrentPath pz{z, kinds, n, proposals.filmX[i], proposals.filmY[i]};
-  // T(z->y) / T(y->z), times a(z) / a(y) when the choice depends on the film position.
-  const float ratio = unit.transitionRatio(ctx.measure, py, pz, proposals.perturbSize[i]) * proposals.selection[i];
-  if (!(ly > 0) || !std::isfinite(ly)) {
-    // A chain must never stand on a path of zero density in the mutation's measure (it would
-    // accept everything); seeds are checked when chains start, this is the guard.
-    proposals.reason[i] = kRejectCurrentZero;
-  } else if (!(ratio > 0) || !std::isfinite(ratio)) {
-    proposals.reason[i] = kRejectIrreversible;
-  } else {
-    a.q = std::min(1.0f, lz / ly * ratio);
-    a.fz = a.fz / lz;
-    a.fzLum = lz;
-  }
+  decide(proposals, i, lz, chains.fLum[i], unit.transitionRatio(ctx.measure, py, pz, proposals.perturbSize[i]), a);
+  return a;
+}
+
+Acceptance perturbationAcceptanceOf(const StepConfig& ctx, const AcceptSlot& s, Color fz) {
+  ChainQueue& chains = s.chains;
+  ProposalQueue& proposals = s.proposals;
+  const size_t i = s.i;
+  const int n = chains.vertexCount[i];
+  uint8_t kinds[kMaxChainVertices];
+  unpackSignature(chains.signature[i], n, kinds);
+  const Mutation& unit = mutationOf(MutationKind(proposals.mutation[i]));
+  Acceptance a;
+  a.fz = fz;
+  const float lz = luminance(fz);
+  if (rejectsZero(proposals, i, lz)) return a;
+  // No vertices: this unit's ratio reads the film positions only.
+  const CurrentPath py{nullptr, kinds, n, chains.filmX[i], chains.filmY[i]};
+  const CurrentPath pz{nullptr, kinds, n, proposals.filmX[i], proposals.filmY[i]};
+  decide(proposals, i, lz, chains.fLum[i], unit.transitionRatio(ctx.measure, py, pz, proposals.perturbSize[i]), a);
   return a;
 }
 

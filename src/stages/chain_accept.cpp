@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/rng.h"
+#include "mutations/lens_contribution_packet.h"
 #include "stages/chain_stages.h"
 
 namespace erpt {
@@ -15,14 +16,20 @@ void stageChainAccept(const StepConfig& ctx, ChainQueue& chains, VertexQueue& ch
   PathVertex y[kMaxChainVertices], z[kMaxChainVertices];
   uint64_t proposed[kMutationKindCount] = {}, accepted[kMutationKindCount] = {}, rejected[kRejectReasonCount] = {};
   const bool moves = ctx.settings.flow != FlowRule::DetailedBalance;  // detailed balance: x never moves
+  LensContributionPacket lens;
   for (size_t i = range.begin; i < range.end; ++i) {
+    if ((i - range.begin) % LensContributionPacket::kCapacity == 0)
+      lens.evaluate(ctx, chains, chainVertices, proposals, proposalVertices, i,
+                    std::min(LensContributionPacket::kCapacity, range.end - i));
     clearStepDeposits(deposits, i);
     if (chains.stepsLeft[i] == 0) continue;
     const MutationKind kind = MutationKind(proposals.mutation[i]);
     const AcceptSlot slot{chains, chainVertices, proposals, proposalVertices, i, y, z};
-    // Only a proposal that chose a unit completes; its unit judges it.
-    const Acceptance a =
-        proposals.state[i] == kProposalComplete ? mutationOf(kind).acceptance(ctx, slot) : Acceptance{};
+    // Only a proposal that chose a unit completes; its unit judges it, from f(z) in the lens
+    // packet when the packet took it.
+    const Acceptance a = proposals.state[i] != kProposalComplete ? Acceptance{}
+                         : lens.took(i)                          ? perturbationAcceptanceOf(ctx, slot, lens.fz(i))
+                                                                 : mutationOf(kind).acceptance(ctx, slot);
     proposals.acceptance[i] = a.q;
     // 53 bits: with a 24-bit coin every q below 2^-24 would be accepted with probability 2^-24.
     const bool accept = uniformDouble(chains.key[i], stepDim(chains.step[i], kDimAccept)) < a.q;

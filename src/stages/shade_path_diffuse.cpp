@@ -10,6 +10,7 @@
 
 #include "core/rng.h"
 #include "kernels/lane_gather.h"
+#include "kernels/lane_vec3.h"
 #include "kernels/surface_vertex.h"
 #include "kernels/uniform_lanes.h"
 #include "models/surface.h"
@@ -19,48 +20,10 @@ namespace erpt {
 
 namespace {
 
-using batch = xsimd::batch<float>;
-using lanes = batch::batch_bool_type;
-using indices = xsimd::batch<int32_t>;
-static_assert(indices::size == batch::size, "one index lane per float lane");
+using namespace lanes3;
+using lanes = mask;
 constexpr size_t kLanes = batch::size;
 static_assert(DiffuseShadePacket::kCapacity % kLanes == 0, "a packet is whole batches");
-
-struct V3 {
-  batch x, y, z;
-};
-V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-V3 operator*(const V3& a, const batch& s) { return {a.x * s, a.y * s, a.z * s}; }
-V3 operator*(const V3& a, const V3& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
-V3 operator/(const V3& a, const batch& s) { return {a.x / s, a.y / s, a.z / s}; }
-batch dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-V3 cross(const V3& a, const V3& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-V3 select(const lanes& m, const V3& a, const V3& b) {
-  return {xsimd::select(m, a.x, b.x), xsimd::select(m, a.y, b.y), xsimd::select(m, a.z, b.z)};
-}
-lanes isBlack(const V3& c) { return (c.x == batch(0.0f)) & (c.y == batch(0.0f)) & (c.z == batch(0.0f)); }
-
-// Frame(n) of math.h (Duff et al.'s branchless basis), lane by lane.
-struct LaneFrame {
-  V3 s, t, n;
-  explicit LaneFrame(const V3& normal) : n(normal) {
-    const batch sign = xsimd::copysign(batch(1.0f), n.z);
-    const batch a = batch(-1.0f) / (sign + n.z);
-    const batch b = n.x * n.y * a;
-    s = {batch(1.0f) + sign * n.x * n.x * a, sign * b, -sign * n.x};
-    t = {b, sign + n.y * n.y * a, -n.y};
-  }
-  V3 toLocal(const V3& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
-  V3 toWorld(const V3& v) const { return s * v.x + t * v.y + n * v.z; }
-};
-
-// offsetOrigin of surface.h.
-V3 offsetOrigin(const V3& p, const V3& ng, const V3& dir) {
-  const batch scale = xsimd::max(xsimd::max(xsimd::abs(p.x), xsimd::abs(p.y)), xsimd::max(xsimd::abs(p.z), batch(1e-2f)));
-  const batch eps = scale * 2e-5f;
-  return p + ng * xsimd::select(dot(dir, ng) >= batch(0.0f), eps, -eps);
-}
 
 // squareToCosineHemisphere of warp.h: the concentric disk lifted to the hemisphere.
 V3 cosineHemisphere(const batch& u1, const batch& u2) {
