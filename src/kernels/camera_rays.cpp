@@ -1,7 +1,8 @@
-// Camera ray directions for whole arrays of film positions, vectorized with xsimd (the
-// widest instruction set the build targets: AVX2 by default). Same math as
-// Camera::generateRay.
+// Camera ray directions for whole arrays of film positions, vectorized with xsimd (AVX2
+// lanes: lane_arch.h). Same math as Camera::generateRay.
 #include <xsimd/xsimd.hpp>
+
+#include "kernels/lane_arch.h"
 
 #include "kernels/lane_batches.h"
 #include "models/camera.h"
@@ -10,7 +11,7 @@ namespace erpt {
 
 void Camera::generateRays(const float* filmX, const float* filmY, size_t n, float* dirX, float* dirY, float* dirZ,
                           float* tnear, float* tfar) const {
-  using batch = xsimd::batch<float>;
+  using batch = LaneBatch<float>;
   constexpr size_t lanes = batch::size;
   const batch scaleX(-2.0f / float(width_)), scaleY(-2.0f / (float(height_) * aspect_));
   const batch offsetY(1.0f / aspect_), t(tanHalfX_), one(1.0f), nearB(nearClip_), farB(farClip_);

@@ -5,11 +5,13 @@
 
 #include <xsimd/xsimd.hpp>
 
+#include "kernels/lane_arch.h"
+
 namespace erpt::lanes3 {
 
-using batch = xsimd::batch<float>;
+using batch = LaneBatch<float>;
 using mask = batch::batch_bool_type;
-using indices = xsimd::batch<int32_t>;
+using indices = LaneBatch<int32_t>;
 static_assert(indices::size == batch::size, "one index lane per float lane");
 
 struct V3 {

@@ -3,12 +3,13 @@
 #include <xsimd/xsimd.hpp>
 
 #include "erpt/math.h"
+#include "kernels/lane_arch.h"
 #include "kernels/lane_batches.h"
 
 namespace erpt {
 
 void sphereCoordinatesOf(const float* x, const float* y, const float* z, size_t n, float* u, float* v) {
-  using batch = xsimd::batch<float>;
+  using batch = LaneBatch<float>;
   constexpr size_t lanes = batch::size;
   const batch twoPi(2 * kPi), halfInvPi(0.5f * kInvPi), invPi(kInvPi), largestBelowOne(0x1.fffffep-1f);
   forEachLaneBatch<lanes>(n, std::array<const float*, 3>{x, y, z}, std::array<float*, 2>{u, v},

@@ -5,10 +5,12 @@
 
 #include <xsimd/xsimd.hpp>
 
+#include "kernels/lane_arch.h"
+
 namespace erpt {
 
 namespace {
-using batch = xsimd::batch<float>;
+using batch = LaneBatch<float>;
 
 // NaN fails every comparison, so !(|v| <= FLT_MAX) catches NaN and both infinities.
 inline bool finite(float v) { return std::abs(v) <= FLT_MAX; }
