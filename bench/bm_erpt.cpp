@@ -17,7 +17,8 @@ constexpr size_t kSlots = 1 << 13;
 constexpr size_t kGrain = 256;
 
 // Seeds of a 4 spp path-traced Cornell box and the chain queues (StepQueues, kSlots slots)
-// with chains started from them, plus snapshots of the queues before each stage.
+// with chains started from them and stepped once, plus snapshots of the queues before each
+// stage.
 struct ErptFixture : StepQueues {
   Scene scene = loadCornellBox();
   Tracer tracer{scene};
@@ -44,6 +45,10 @@ struct ErptFixture : StepQueues {
     for (size_t slot = 0, i = 0; slot < kSlots; ++i)
       if (seeds.seeds.vertexCount[i] <= uint32_t(kMaxChainVertices) && luminance(seeds.contribution(i)) > 0)
         loadChainFromSeed(chains, chainVertices, slot++, seeds, i, streamKey(1, i, 0), 1 << 30, 0.01f);
+    // One whole step first: a chain's f(y) and fixed tail are cached from its first step on,
+    // so the stages below see chains as they are for every step but a chain's first.
+    StepCounters warmUp;
+    ChainStep{tracer, ctx, nullptr, kGrain}.run(*this, warmUp);
     const IndexRange all{0, kSlots};
     stageChainMutate(ctx, chains, chainVertices, proposals, rays, all);
     for (size_t i = 0; i < kSlots; ++i) disableRay(shadowRays, i);
