@@ -30,10 +30,8 @@ FilmDensity::FilmDensity(const PixelFilter& filter, int width, int height, bool 
   insideY_ = inside(height);
 }
 
-float FilmDensity::axis(float x, int size) const {
+float FilmDensity::axisNearEdges(float x, int size) const {
   const float r = filter_.radius();
-  // Box and tent filters at unit spacing sum to exactly 1 where every pixel in reach exists.
-  if (filter_.kind() != FilterKind::Gaussian && x >= r && x <= float(size) - r) return 1.0f;
   int lo = std::max(0, int(std::floor(x - 0.5f - r)) + 1), hi = std::min(size - 1, int(std::floor(x - 0.5f + r)));
   float sum = 0;
   for (int p = lo; p <= hi; ++p) sum += filter_.eval(x - (float(p) + 0.5f));

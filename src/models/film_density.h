@@ -39,7 +39,15 @@ class FilmDensity {
   int height() const { return height_; }
 
  private:
-  float axis(float x, int size) const;  // sum over pixels along one axis of the normalized 1D filter
+  // Sum over pixels along one axis of the normalized 1D filter. Box and tent filters at unit
+  // spacing sum to exactly 1 where every pixel in reach exists: that test is inline, since
+  // every proposal asks it.
+  float axis(float x, int size) const {
+    const float r = filter_.radius();
+    if (filter_.kind() != FilterKind::Gaussian && x >= r && x <= float(size) - r) return 1.0f;
+    return axisNearEdges(x, size);
+  }
+  float axisNearEdges(float x, int size) const;
   const PixelFilter& filter_;
   int width_, height_;
   float norm_;  // 1 / integral of the 1D filter

@@ -25,18 +25,9 @@ PixelFilter::PixelFilter(FilterKind kind) : kind_(kind) {
   }
 }
 
-float PixelFilter::eval(float x) const {
-  x = std::abs(x);
-  switch (kind_) {
-    case FilterKind::Box:
-      return x <= 0.5f ? 1.0f : 0.0f;
-    case FilterKind::Tent:
-      return std::max(0.0f, 1.0f - x);
-    default: {
-      auto g = [](float t) { return std::exp(-t * t / (2 * kGaussianStddev * kGaussianStddev)); };
-      return std::max(0.0f, g(x) - g(radius_));
-    }
-  }
+float PixelFilter::evalGaussian(float x) const {
+  auto g = [](float t) { return std::exp(-t * t / (2 * kGaussianStddev * kGaussianStddev)); };
+  return std::max(0.0f, g(x) - g(radius_));
 }
 
 float PixelFilter::sampleOffset(float u) const {

@@ -102,8 +102,8 @@ struct Mutation {
 // tail cached per measure in the chain's columns; and the move to z (its regenerated vertices).
 Acceptance perturbationAcceptance(const StepConfig& ctx, const AcceptSlot& slot);
 // The same verdict for a proposal whose f(z) was evaluated elsewhere (the lens contribution
-// packet), with lum(f(y)) cached in the unit's measure; the slot's scratch paths are not
-// loaded, so only for units whose transition ratio reads the film positions alone (lens).
+// packet), with lum(f(y)) cached in the unit's measure; the paths' vertices and kinds are not
+// loaded (null), so only for units whose transition ratio reads the film positions alone (lens).
 Acceptance perturbationAcceptanceOf(const StepConfig& ctx, const AcceptSlot& slot, Color fz);
 void moveToPerturbation(const AcceptSlot& slot, const Acceptance& accepted);
 // The move of the units that make a whole path (the large step, the bidirectional mutation):

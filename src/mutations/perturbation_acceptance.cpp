@@ -88,16 +88,14 @@ Acceptance perturbationAcceptanceOf(const StepConfig& ctx, const AcceptSlot& s, 
   ProposalQueue& proposals = s.proposals;
   const size_t i = s.i;
   const int n = chains.vertexCount[i];
-  uint8_t kinds[kMaxChainVertices];
-  unpackSignature(chains.signature[i], n, kinds);
   const Mutation& unit = mutationOf(MutationKind(proposals.mutation[i]));
   Acceptance a;
   a.fz = fz;
   const float lz = luminance(fz);
   if (rejectsZero(proposals, i, lz)) return a;
-  // No vertices: this unit's ratio reads the film positions only.
-  const CurrentPath py{nullptr, kinds, n, chains.filmX[i], chains.filmY[i]};
-  const CurrentPath pz{nullptr, kinds, n, proposals.filmX[i], proposals.filmY[i]};
+  // No vertices and no kinds: this unit's ratio reads the film positions only.
+  const CurrentPath py{nullptr, nullptr, n, chains.filmX[i], chains.filmY[i]};
+  const CurrentPath pz{nullptr, nullptr, n, proposals.filmX[i], proposals.filmY[i]};
   decide(proposals, i, lz, chains.fLum[i], unit.transitionRatio(ctx.measure, py, pz, proposals.perturbSize[i]), a);
   return a;
 }
