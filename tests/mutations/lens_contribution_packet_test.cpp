@@ -113,8 +113,9 @@ TEST(LensContributionPacket, MatchesTheScalarUnitSlotBySlot) {
     stageChainAccept(ctx, q.chains, q.chainVertices, q.proposals, q.proposalVertices, q.deposits, counters,
                      {0, n});
   }
-  std::printf("complete %zu, taken %zu (through the light %zu, zero %zu), declined %zu; zero decisions differ %zu\n",
-              complete, taken, viaLight, zero, declined, zeroDiffer);
+  std::printf("complete %zu, taken %zu (through the light %zu, zero %zu), declined %zu; zero decisions differ %zu; "
+              "relative difference median %.2g, 99%% %.2g\n",
+              complete, taken, viaLight, zero, declined, zeroDiffer, quantile(error, 0.5), quantile(error, 0.99));
   // Every case in numbers: both shapes, zero and non-zero f, and proposals left to the unit
   // (the first step of every chain, the textured box, the plastic sphere).
   EXPECT_GT(taken, complete / 3);
