@@ -13,6 +13,7 @@
 
 #include "mutations/lens_contribution_packet.h"
 #include "support/erpt_world.h"
+#include "support/slot_differences.h"
 #include "support/test_support.h"
 
 namespace erpt {
@@ -48,16 +49,8 @@ constexpr const char* kScene = R"(<scene version="3.0.0">
   </shape>
 </scene>)";
 
-double relativeDifference(Color a, Color b) {
-  const double scale = std::max({std::abs(b.x), std::abs(b.y), std::abs(b.z), 1e-30f});
-  return std::max({std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.z - b.z)}) / scale;
-}
-
-double quantile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[size_t(p * double(v.size() - 1))];
-}
+using test::quantile;
+using test::relativeDifference;
 
 TEST(LensContributionPacket, MatchesTheScalarUnitSlotBySlot) {
   test::TempDir dir;
@@ -106,7 +99,7 @@ TEST(LensContributionPacket, MatchesTheScalarUnitSlotBySlot) {
         const bool scalarZero = !(luminance(scalar) > 0), lanesZero = !(luminance(lanes) > 0);
         zero += scalarZero;
         zeroDiffer += scalarZero != lanesZero;
-        if (!scalarZero && !lanesZero) error.push_back(relativeDifference(lanes, scalar));
+        if (!scalarZero && !lanesZero) error.push_back(relativeDifference(lanes, scalar, 1e-30f));
       }
     }
     // Advance the chains (and fill their caches) with the library's accept stage.

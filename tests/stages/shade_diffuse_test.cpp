@@ -18,6 +18,7 @@
 #include "models/camera.h"
 #include "stages/shade_path_diffuse.h"
 #include "stages/stages.h"
+#include "support/slot_differences.h"
 #include "support/test_support.h"
 #include "tracer/tracer.h"
 
@@ -100,16 +101,8 @@ Queues randomHits(const Tracer& tracer, uint64_t seed, size_t n) {
   return q;
 }
 
-double relativeDifference(Vec3 a, Vec3 b) {
-  const double scale = std::max({std::abs(b.x), std::abs(b.y), std::abs(b.z), 1e-6f});
-  return std::max({std::abs(a.x - b.x), std::abs(a.y - b.y), std::abs(a.z - b.z)}) / scale;
-}
-
-double quantile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[size_t(p * double(v.size() - 1))];
-}
+using test::quantile;
+using test::relativeDifference;
 
 TEST(ShadeDiffuse, VectorKernelMatchesTheScalarBodySlotBySlot) {
   test::TempDir dir;
