@@ -1,6 +1,8 @@
 // Accept stage: each complete proposal's unit gives its acceptance probability (mutation.h),
 // then the Metropolis coin, the step's deposit records (the rule lives in chain_deposit.cpp),
-// and, on acceptance, the unit moves the chain. No branch on the kind of proposal.
+// and, on acceptance, the unit moves the chain. No branch on the kind of proposal: the lens
+// contribution packet takes the proposals of its shape by itself, 64 slots ahead, and hands
+// their f(z) to the unit's verdict.
 #include <algorithm>
 #include <cmath>
 
