@@ -3,7 +3,6 @@
 #include <xsimd/xsimd.hpp>
 
 #include "kernels/lane_arch.h"
-
 #include "kernels/lane_batches.h"
 #include "models/camera.h"
 

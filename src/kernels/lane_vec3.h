@@ -19,6 +19,7 @@ struct V3 {
 };
 inline V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 inline V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline V3 operator-(const V3& a) { return {-a.x, -a.y, -a.z}; }
 inline V3 operator*(const V3& a, const batch& s) { return {a.x * s, a.y * s, a.z * s}; }
 inline V3 operator*(const V3& a, const V3& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
 inline V3 operator/(const V3& a, const batch& s) { return {a.x / s, a.y / s, a.z / s}; }

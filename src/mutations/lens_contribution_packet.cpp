@@ -27,8 +27,6 @@ const Material* plainDiffuse(const Scene& scene, int32_t material) {
 // normalize() of math.h: v times the reciprocal of its length.
 V3 normalized(const V3& v) { return v * (batch(1.0f) / xsimd::sqrt(dot(v, v))); }
 
-V3 negated(const V3& v) { return {-v.x, -v.y, -v.z}; }
-
 // f(wi, wo) |cos wo| of the diffuse lobe around the shading normal n (bsdfEval: sideFlip, then
 // evalFront), with the scalar code's comparisons, so NaNs go where they go there.
 V3 diffuseEval(const V3& reflectance, const batch& twoSided, const V3& n, const V3& wi, const V3& wo) {
@@ -123,7 +121,7 @@ void LensContributionPacket::evaluate(const StepConfig& ctx, const ChainQueue& c
     f = f * (xsimd::abs(dot(ng2, d)) / (dist2 * xsimd::sqrt(dist2)));
     const V3 colour2{get(kR2), get(kG2), get(kB2)};
     const V3 zero{batch(0.0f), batch(0.0f), batch(0.0f)};
-    const V3 toFirst = negated(toNext);
+    const V3 toFirst = -toNext;
     // Vertex 2 a light: its radiance towards vertex 1 (one-sided, emittedAlong).
     const V3 viaLight = f * select(dot(ng2, toFirst) <= batch(0.0f), zero, colour2);
     // Vertex 2 diffuse: its BSDF between vertex 1 and vertex 3, then the cached tail.
