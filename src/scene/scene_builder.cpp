@@ -183,6 +183,9 @@ Properties SceneBuilder::readProperties(const Document& doc, const pugi::xml_nod
       scene_.warnings.add(where, "<" + tag + "> is not supported inside <" + node.name() + ">; ignored");
     }
   }
+  // A parameter given under another name its plugin takes (a Mitsuba 0.6 alias) gets the name
+  // the plugin readers use.
+  if (hasParameterAliases(node.name())) resolveAliases(node.name(), attribute(doc, node, "type", false), props);
   return props;
 }
 

@@ -89,9 +89,17 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
   Material m;
   m.name = id.empty() ? type : id;
   Warnings& w = scene_.warnings;
-  if (type == "diffuse") {
+  if (type == "diffuse" || type == "roughdiffuse") {
     m.kind = BsdfKind::Diffuse;
     m.reflectance = props.getColorParam("reflectance", Color(0.5f), scene_);
+    if (type == "roughdiffuse") {
+      // Oren-Nayar's roughness is not modelled: the surface keeps its reflectance, on a
+      // Lambertian lobe (closer than the grey default of an unknown BSDF).
+      props.find("alpha");  // Mitsuba's default is 0.2
+      props.find("use_fast_approx");
+      w.add(props.where(), "roughdiffuse (Oren-Nayar) is not supported; rendered as diffuse with its reflectance, "
+                           "ignoring its roughness 'alpha'");
+    }
   } else if (type == "twosided") {
     m = wrapped();
     m.twoSided = true;

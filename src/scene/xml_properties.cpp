@@ -109,6 +109,49 @@ void Properties::warnUnused(Warnings& warnings) const {
     if (!p.used) warnings.add(p.where, "parameter '" + name + "' of " + plugin_ + " is not supported; ignored");
 }
 
+void Properties::rename(const std::string& alias, const std::string& canonical) {
+  auto it = props_.find(alias);
+  if (it == props_.end()) return;
+  auto other = props_.find(canonical);
+  if (other != props_.end())
+    throw InputError(it->second.where, "'" + alias + "' and '" + canonical + "' (line " +
+                                           std::to_string(other->second.where.line) + ") of " + plugin_ +
+                                           " name the same parameter; give only one");
+  Property p = std::move(it->second);
+  props_.erase(it);
+  props_.emplace(canonical, std::move(p));
+}
+
+namespace {
+
+// Parameters a plugin takes under two names, by element and plugin type; names as
+// normalizeName gives them, so each entry serves both dialects. Mitsuba 0.6's BSDFs, emitters
+// and textures have no other aliases (difftrans's `diffuseTransmittance` belongs to a plugin
+// erpt does not read).
+struct ParameterAlias {
+  const char* element;
+  const char* type;
+  const char* alias;
+  const char* canonical;
+};
+constexpr ParameterAlias kParameterAliases[] = {
+    {"bsdf", "diffuse", "diffuse_reflectance", "reflectance"},
+    {"bsdf", "roughdiffuse", "diffuse_reflectance", "reflectance"},
+};
+
+}  // namespace
+
+bool hasParameterAliases(const std::string& element) {
+  for (const ParameterAlias& a : kParameterAliases)
+    if (element == a.element) return true;
+  return false;
+}
+
+void resolveAliases(const std::string& element, const std::string& type, Properties& props) {
+  for (const ParameterAlias& a : kParameterAliases)
+    if (element == a.element && type == a.type) props.rename(a.alias, a.canonical);
+}
+
 Color srgbToLinear(Color c) {
   Color out;
   for (int i = 0; i < 3; ++i) {

@@ -44,6 +44,9 @@ class Properties {
 
   // One warning per parameter the plugin never read: a typo or an unsupported option.
   void warnUnused(Warnings& warnings) const;
+  // Gives parameter `alias` the name `canonical`, the one the loader reads. Both given: an
+  // InputError at the alias (one parameter under two names).
+  void rename(const std::string& alias, const std::string& canonical);
 
  private:
   const Property& require(const std::string& name, const char* tag) const;
@@ -51,6 +54,12 @@ class Properties {
   SourceLocation where_;
   std::map<std::string, Property> props_;
 };
+
+// Renames the parameters that `<element type="type">` takes under another name as well (Mitsuba
+// 0.6's aliases, such as a diffuse BSDF's `diffuseReflectance` for `reflectance`) to the name
+// the loader reads. The aliases are declared in one table, in xml_properties.cpp.
+void resolveAliases(const std::string& element, const std::string& type, Properties& props);
+bool hasParameterAliases(const std::string& element);  // any plugin of this element (bsdf, ...)
 
 // Colour conversions for <rgb>, <srgb>, <spectrum> values.
 Color parseColorValue(const Property& p);
