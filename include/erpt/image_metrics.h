@@ -1,6 +1,8 @@
 // Image error metrics (what `erpt diff`, `erpt compare` and the statistical tests report).
 #pragma once
 
+#include <string>
+
 #include <cstddef>
 
 #include "erpt/image_io.h"
@@ -21,6 +23,9 @@ Color meanOf(const RgbImage& img);
 // The reference box-downsampled to the image's size when its size is an integer multiple of
 // it (the same image if the sizes agree). Throws UsageError otherwise.
 RgbImage matchReferenceSize(const RgbImage& reference, int width, int height);
+// What matchReferenceSize does to a reference of another size, as one sentence for the user
+// ("" when the sizes agree): the errors are then against the box-averaged reference.
+std::string referenceSizeNote(const RgbImage& reference, int width, int height);
 // Compares `img` with `reference` (downsampled as above).
 ImageComparison compareImages(const RgbImage& img, const RgbImage& reference);
 

@@ -2,6 +2,7 @@
 // Textured colours are resolved to constants at a hit before the BSDF is evaluated.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,9 @@ enum class MicrofacetKind { Beckmann, GGX };
 // A wrapper that perturbs the shading normal at every hit (shading_frames.cpp): `normalmap`
 // (a tangent-space normal texture, Mitsuba 3) or `bumpmap` (a height texture, both dialects).
 enum class ShadingMap { None, Normal, Bump };
+// The most non-blend BSDFs one blend tree (nested blendbsdf / mixturebsdf) may hold: the
+// size of SurfaceColors' per-part colours.
+constexpr int kMaxBlendLeaves = 8;
 
 struct Material {
   std::string name;  // the XML id, or the plugin type when anonymous
@@ -48,7 +52,8 @@ struct Material {
   float specularSamplingWeight = 0;  // plastic, coatings: share of samples given to the coat; phong: to the specular lobe
   std::vector<float> coatTransmittance;  // roughplastic, roughcoating: 1 - coat albedo over cos(theta) in [0, 1]
   // blendbsdf: (1 - w) f_0 + w f_1 with w = blendWeight (its channels' mean, in [0, 1]); the
-  // two parts are whole materials of their own (never blends themselves).
+  // two parts are whole materials of their own, blends too (mixturebsdf loads as a chain of
+  // blends), with at most kMaxBlendLeaves non-blend BSDFs in the whole tree.
   std::vector<Material> blendParts;
   ColorParam blendWeight{Color(0.5f)};
   // coating, roughcoating (Mitsuba 0.6): a dielectric layer (intIOR / extIOR; roughcoating:
@@ -59,6 +64,10 @@ struct Material {
   float thickness = 1;
 
   float relativeIOR() const { return intIOR / extIOR; }
+  // The non-blend BSDFs of a blend tree (1 for any other material).
+  int blendLeaves() const {
+    return kind == BsdfKind::Blend ? blendParts[0].blendLeaves() + blendParts[1].blendLeaves() : 1;
+  }
   float roughnessV() const { return alphaV > 0 ? alphaV : alpha; }
   // surfaceAt adjusts the shading frame at its hits: a map, or a frame along dp/du.
   bool adjustsShadingFrame() const { return shadingMap != ShadingMap::None || anisotropic(); }
@@ -95,15 +104,59 @@ struct SurfaceColors {
   Color coatAbsorption{0.0f};  // coating, roughcoating: sigma_a * thickness
   struct Part {
     Color reflectance, specularReflectance, specularTransmittance;
-  } parts[2];
+  } parts[kMaxBlendLeaves];
+  // A blend tree: parts[0, leaves) are the colours of its non-blend BSDFs in order, the first
+  // part holding firstLeaves of them; nested[] has the blends inside it in preorder (first
+  // part's, then second part's), each with its weight and its own first part's leaf count.
+  uint8_t leaves = 1, firstLeaves = 1;
+  struct Nested {
+    float weight = 0;
+    uint8_t firstLeaves = 1;
+  } nested[kMaxBlendLeaves - 2];
+  // The colours of part i of this blend (or of a coating's coated BSDF, i = 0).
   SurfaceColors part(int i) const {
+    const int first = i == 0 ? 0 : firstLeaves;
+    const int count = i == 0 ? firstLeaves : leaves - firstLeaves;
     SurfaceColors c;
-    c.reflectance = parts[i].reflectance;
-    c.specularReflectance = parts[i].specularReflectance;
-    c.specularTransmittance = parts[i].specularTransmittance;
+    c.reflectance = parts[first].reflectance;
+    c.specularReflectance = parts[first].specularReflectance;
+    c.specularTransmittance = parts[first].specularTransmittance;
+    if (count > 1) {  // the part is a blend: its leaves, and its own node and nested blends
+      const int node = i == 0 ? 0 : firstLeaves - 1;
+      c.leaves = uint8_t(count);
+      c.firstLeaves = nested[node].firstLeaves;
+      c.blendWeight = nested[node].weight;
+      for (int k = 0; k < count; ++k) c.parts[k] = parts[first + k];
+      for (int k = 0; k + 2 < count; ++k) c.nested[k] = nested[node + 1 + k];
+    }
     return c;
   }
 };
+
+namespace detail {
+
+// A blendbsdf weight: its channels' mean, clamped to [0, 1].
+inline float blendWeightOf(Color w) {
+  const float mean = (w.x + w.y + w.z) / 3;
+  return mean > 0 ? (mean < 1 ? mean : 1.0f) : 0.0f;
+}
+
+// Appends the colours of blend part p (a leaf, or a nested blend and its parts) to c.
+template <class Resolve>
+void resolveBlendPart(const Material& p, Resolve& resolve, SurfaceColors& c, int& leaf, int& node) {
+  if (p.kind == BsdfKind::Blend) {
+    if (node < kMaxBlendLeaves - 2)
+      c.nested[node] = {blendWeightOf(resolve(p.blendWeight)), uint8_t(p.blendParts[0].blendLeaves())};
+    ++node;
+    for (const Material& q : p.blendParts) resolveBlendPart(q, resolve, c, leaf, node);
+    return;
+  }
+  if (leaf < kMaxBlendLeaves)
+    c.parts[leaf] = {resolve(p.reflectance), resolve(p.specularReflectance), resolve(p.specularTransmittance)};
+  ++leaf;
+}
+
+}  // namespace detail
 
 // The colours of `m` with each parameter resolved by resolve(const ColorParam&) -> Color (its
 // constant, or its texture at a surface point).
@@ -119,13 +172,11 @@ SurfaceColors resolveSurfaceColors(const Material& m, Resolve&& resolve) {
     c.coatAbsorption = resolve(m.sigmaA) * m.thickness;
   }
   if (m.kind == BsdfKind::Blend) {
-    const Color w = resolve(m.blendWeight);
-    const float mean = (w.x + w.y + w.z) / 3;
-    c.blendWeight = mean > 0 ? (mean < 1 ? mean : 1.0f) : 0.0f;
-    for (int k = 0; k < 2; ++k) {
-      const Material& p = m.blendParts[size_t(k)];
-      c.parts[k] = {resolve(p.reflectance), resolve(p.specularReflectance), resolve(p.specularTransmittance)};
-    }
+    c.blendWeight = detail::blendWeightOf(resolve(m.blendWeight));
+    c.leaves = uint8_t(m.blendLeaves());
+    c.firstLeaves = uint8_t(m.blendParts[0].blendLeaves());
+    int leaf = 0, node = 0;
+    for (const Material& p : m.blendParts) detail::resolveBlendPart(p, resolve, c, leaf, node);
   }
   return c;
 }

@@ -123,10 +123,12 @@ std::string markdownTable(const std::vector<CompareRow>& rows) {
   return md.str();
 }
 
-std::string jsonReport(const CompareArgs& a, const RenderSettings& s, const std::vector<CompareRow>& rows) {
+// `downsampled`: the factor by which the reference was box-averaged (1: the render's size).
+std::string jsonReport(const CompareArgs& a, const RenderSettings& s, const std::vector<CompareRow>& rows, int downsampled) {
   std::ostringstream js;
   js << "{\n  \"command\": " << jsonString(a.commandLine) << ",\n  \"scene\": " << jsonString(a.render.scene)
-     << ",\n  \"reference\": " << jsonString(a.reference) << ",\n  \"budget_seconds\": " << number(a.time)
+     << ",\n  \"reference\": " << jsonString(a.reference) << ",\n  \"reference_downsampled\": " << downsampled
+     << ",\n  \"budget_seconds\": " << number(a.time)
      << ",\n  \"width\": " << s.width << ",\n  \"height\": " << s.height << ",\n  \"results\": [";
   for (size_t i = 0; i < rows.size(); ++i) {
     const CompareRow& r = rows[i];
@@ -188,6 +190,8 @@ int runCompare(const CompareArgs& a) {
   for (const std::string& e : splitEntries(a.integrators)) raced.push_back(e.substr(0, e.find('[')));
   checkOptionScope(a.render.given, raced);
   const RgbImage reference = matchReferenceSize(referenceFile, base.width, base.height);  // size errors before rendering
+  const std::string sizeNote = referenceSizeNote(referenceFile, base.width, base.height);
+  if (!sizeNote.empty()) std::cerr << "compare: " << sizeNote << "\n";
   std::error_code ec;
   fs::create_directories(a.outDir, ec);
   if (!fs::is_directory(a.outDir)) throw UsageError("cannot create output directory '" + a.outDir + "'");
@@ -221,10 +225,11 @@ int runCompare(const CompareArgs& a) {
   }
 
   const std::string table = markdownTable(rows);
-  const std::string json = jsonReport(a, base, rows);
+  const std::string json = jsonReport(a, base, rows, referenceFile.width / base.width);
   const fs::path jsonPath = fs::path(a.outDir) / "compare.json", plotPath = fs::path(a.outDir) / "compare.png";
   writeTextAtomic(jsonPath, json);
-  writeTextAtomic(fs::path(a.outDir) / "compare.md", "`" + a.commandLine + "`\n\n" + table);
+  writeTextAtomic(fs::path(a.outDir) / "compare.md",
+                  "`" + a.commandLine + "`\n\n" + (sizeNote.empty() ? "" : "Note: " + sizeNote + ".\n\n") + table);
   // The plot is drawn by the Python package (python/erpt/plot.py, matplotlib).
   const std::string plotted = plotComparison(jsonPath.string(), plotPath.string());
   if (!plotted.empty()) std::cerr << "compare: no compare.png: " << plotted << "\n";

@@ -23,6 +23,9 @@ void addDiffCommand(CLI::App& app, DiffArgs& a) {
 int runDiff(const DiffArgs& a) {
   const RgbImage image = readImage(a.image), reference = readImage(a.reference);
   const ImageComparison c = compareImages(image, reference);
+  // A reference of another size is never compared silently: the downsampling is printed.
+  const std::string note = referenceSizeNote(reference, image.width, image.height);
+  if (!note.empty()) std::printf("reference_downsampled %d (%s)\n", reference.width / image.width, note.c_str());
   if (!a.heatmap.empty()) {
     if (std::filesystem::path(a.heatmap).extension() != ".png") throw UsageError("--heatmap must name a .png file");
     errorHeatmap(image, matchReferenceSize(reference, image.width, image.height)).writePng(a.heatmap);

@@ -19,6 +19,15 @@ Color meanOf(const RgbImage& img) {
   return Color(float(s[0] / double(n)), float(s[1] / double(n)), float(s[2] / double(n)));
 }
 
+std::string referenceSizeNote(const RgbImage& ref, int width, int height) {
+  if (ref.width == width && ref.height == height) return "";
+  matchReferenceSize(ref, width, height);  // throws for sizes that do not divide
+  const int f = ref.width / width;
+  return "the reference (" + std::to_string(ref.width) + "x" + std::to_string(ref.height) + ") is box-averaged over " +
+         std::to_string(f) + "x" + std::to_string(f) + " pixels to the image's " + std::to_string(width) + "x" +
+         std::to_string(height) + "; errors are against that average";
+}
+
 RgbImage matchReferenceSize(const RgbImage& ref, int width, int height) {
   if (ref.width == width && ref.height == height) return ref;
   if (width <= 0 || height <= 0 || ref.width % width != 0 || ref.height % height != 0 ||

@@ -54,4 +54,17 @@ inline V3 offsetOrigin(const V3& p, const V3& ng, const V3& dir) {
   return p + ng * xsimd::select(dot(dir, ng) >= batch(0.0f), eps, -eps);
 }
 
+// shadowSegment of surface.h: the ray between two pushed surface points.
+struct LaneShadowSegment {
+  V3 origin, direction;
+  batch tfar;
+};
+inline LaneShadowSegment shadowSegment(const V3& from, const V3& fromNg, const V3& to, const V3& toNg) {
+  const V3 d = to - from;
+  const V3 origin = offsetOrigin(from, fromNg, d), end = offsetOrigin(to, toNg, -d);
+  const V3 span = end - origin;
+  const batch length = xsimd::sqrt(dot(span, span));
+  return {origin, span / length, length * (1 - 1e-4f)};
+}
+
 }  // namespace erpt::lanes3

@@ -21,10 +21,17 @@ bool connectToLight(const LightSampler& lights, const SurfacePoint& sp, const Ma
     out.misWeight = powerHeuristic(ls.pdf, out.bsdfPdf);
     out.contribution = f * ls.radiance * (out.misWeight / ls.pdf);
   }
-  out.origin = offsetOrigin(sp.position, sp.geometricNormal, ls.direction);
-  out.direction = ls.direction;
-  // Stop just short of the light point so its own surface does not occlude it.
-  out.tfar = ls.environment ? std::numeric_limits<float>::infinity() : length(ls.position - out.origin) * (1 - 1e-4f);
+  if (ls.environment) {
+    out.origin = offsetOrigin(sp.position, sp.geometricNormal, ls.direction);
+    out.direction = ls.direction;
+    out.tfar = std::numeric_limits<float>::infinity();
+    return true;
+  }
+  const ShadowSegment segment =
+      shadowSegment(sp.position, sp.geometricNormal, ls.position, ls.delta ? Vec3(0.0f) : ls.normal);
+  out.origin = segment.origin;
+  out.direction = segment.direction;
+  out.tfar = segment.tfar;
   return true;
 }
 

@@ -315,11 +315,14 @@ float bsdfEta(const Material& m, Vec3 wi, Vec3 wo) {
   if (wi.z * wo.z >= 0) return 1.0f;  // reflection
   if (m.kind == BsdfKind::Dielectric || m.kind == BsdfKind::RoughDielectric)
     return wi.z > 0 ? m.relativeIOR() : 1.0f / m.relativeIOR();
-  // A blend refracts through its dielectric part (the first, if both are: a blend of two
-  // different glasses is the one case where a sample's eta depends on the part it took).
+  // A blend refracts through its dielectric part, in a nested blend too (the first, if several
+  // are: a blend of different glasses is the one case where a sample's eta depends on the part
+  // it took).
   if (m.kind == BsdfKind::Blend)
-    for (const Material& part : m.blendParts)
-      if (part.kind == BsdfKind::Dielectric || part.kind == BsdfKind::RoughDielectric) return bsdfEta(part, wi, wo);
+    for (const Material& part : m.blendParts) {
+      const float eta = bsdfEta(part, wi, wo);
+      if (eta != 1.0f) return eta;
+    }
   return 1.0f;  // thin dielectrics and every reflective material
 }
 
@@ -408,6 +411,14 @@ bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wiWorldSide, flo
   return true;
 }
 
+Color bsdfAdjointWeight(const Material& m, const SurfaceColors& c, Vec3 wi, const BsdfSample& s) {
+  // A Dirac lobe: the sample's weight is the lobe's value over its probability (one lobe of
+  // several along s.wo, for a coating); a refraction's weight holds (n_i / n_t)^2 = 1 / eta^2.
+  if (s.delta) return s.weight * (s.eta * s.eta);
+  if (!(s.pdf > 0) || wi.z == 0) return Color(0.0f);
+  return bsdfEval(m, c, s.wo, wi) * (std::abs(s.wo.z) / (std::abs(wi.z) * s.pdf));
+}
+
 bool bsdfDeltaLobe(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo, Color& value, float& probability) {
   if (m.kind == BsdfKind::Blend) {
     // The parts' Dirac lobes along wo, each weighted by its part's probability.
@@ -486,8 +497,13 @@ bool specularDirection(const Material& m, Vec3 wi, bool reflection, Vec3& wo) {
 }
 
 float deltaRadianceScale(const Material& m, Vec3 wi, Vec3 wo) {
-  if (m.kind == BsdfKind::Blend)  // the part whose lobe refracts (specularDirection's order)
-    return deltaRadianceScale(m.blendParts[m.blendParts[0].kind == BsdfKind::Dielectric ? 0 : 1], wi, wo);
+  if (m.kind == BsdfKind::Blend) {  // the part whose lobe refracts, in a nested blend too (specularDirection's order)
+    for (const Material& part : m.blendParts) {
+      const float scale = deltaRadianceScale(part, wi, wo);
+      if (scale != 1.0f) return scale;
+    }
+    return 1.0f;
+  }
   if (m.kind != BsdfKind::Dielectric || wi.z * wo.z > 0) return 1.0f;
   float scale = refractionScale(m, wi);
   return scale * scale;

@@ -31,6 +31,12 @@ inline float russianRouletteSurvival(const Color& throughput, float etaSquared) 
   return std::min(0.95f, maxComponent(throughput) * etaSquared);
 }
 float bsdfPdf(const Material& m, const SurfaceColors& c, Vec3 wi, Vec3 wo);
+// Importance transport (light subpaths): the weight of a sample `s` drawn with bsdfSample from
+// wi on the light side, f*(wi, s.wo) |cos(s.wo)| / pdf with the adjoint f*(wi, wo) = f(wo, wi)
+// (Veach's thesis, 5.2), shading normals aside. Where the sample took a Dirac lobe this is the
+// lobe's own weight with a refraction's radiance scaling undone: importance, unlike radiance,
+// is not compressed by (n_i / n_t)^2 (docs/bdpt.md, "Light subpaths").
+Color bsdfAdjointWeight(const Material& m, const SurfaceColors& c, Vec3 wi, const BsdfSample& s);
 // u1 picks a lobe, (u2, u3) the direction. Returns false when nothing can be sampled.
 bool bsdfSample(const Material& m, const SurfaceColors& c, Vec3 wi, float u1, float u2, float u3, BsdfSample& out);
 

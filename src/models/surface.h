@@ -120,4 +120,22 @@ inline Vec3 offsetOrigin(Vec3 p, Vec3 geometricNormal, Vec3 dir) {
   return p + geometricNormal * (dot(dir, geometricNormal) >= 0 ? eps : -eps);
 }
 
+// A shadow ray between two surface points: from `from` pushed off its surface towards `to`, to
+// `to` pushed off its surface towards `from` (a zero normal: a point that is no surface, a
+// point light), stopping just short of that end. Both ends are pushed, and the ray aims at the
+// pushed far end: a ray that kept the direction between the unpushed points would end where the
+// near end's push moved it, which can lie inside the far surface (a light seen at a grazing
+// angle) and count the light as occluded by itself.
+struct ShadowSegment {
+  Vec3 origin, direction;
+  float tfar;
+};
+inline ShadowSegment shadowSegment(Vec3 from, Vec3 fromNg, Vec3 to, Vec3 toNg) {
+  const Vec3 d = to - from;
+  const Vec3 origin = offsetOrigin(from, fromNg, d), end = offsetOrigin(to, toNg, -d);
+  const Vec3 span = end - origin;
+  const float length = std::sqrt(dot(span, span));
+  return {origin, span / length, length * (1 - 1e-4f)};
+}
+
 }  // namespace erpt

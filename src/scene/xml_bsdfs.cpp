@@ -1,5 +1,8 @@
 // <bsdf> and <texture> plugins.
 #include <cmath>
+#include <cstdlib>
+#include <optional>
+#include <sstream>
 
 #include "models/bsdf.h"
 #include "erpt/image_io.h"
@@ -39,6 +42,54 @@ void readAlpha(const Properties& props, Warnings& warnings, Material& m) {
   }
   m.alpha = au;
   m.alphaV = av;
+}
+
+// twosided around a blend: its parts do the shading, those of nested blends too.
+void makeTwoSided(Material& m) {
+  m.twoSided = true;
+  for (Material& part : m.blendParts) makeTwoSided(part);
+}
+
+bool refractsSmoothly(const Material& m) { return m.kind == BsdfKind::Dielectric || m.kind == BsdfKind::ThinDielectric; }
+
+// ERPT follows a specular chain through "the" refraction of a vertex: a blend tree keeps its
+// first smooth dielectric, and every later one becomes a copy of it (taking its weight).
+// Returns how many were replaced.
+int keepFirstSmoothRefraction(Material& m, std::optional<Material>& first) {
+  if (m.kind == BsdfKind::Blend) {
+    int replaced = 0;
+    for (Material& part : m.blendParts) replaced += keepFirstSmoothRefraction(part, first);
+    return replaced;
+  }
+  if (!refractsSmoothly(m)) return 0;
+  if (!first) {
+    first = m;
+    return 0;
+  }
+  m = *first;
+  return 1;
+}
+
+// Mitsuba 0.6's mixturebsdf weights: numbers separated by spaces, commas or semicolons; each
+// finite and not negative.
+std::vector<double> mixtureWeights(const std::string& text, const SourceLocation& where) {
+  std::vector<double> weights;
+  size_t at = 0;
+  while (at < text.size()) {
+    const size_t start = text.find_first_not_of(" ,;", at);
+    if (start == std::string::npos) break;
+    const size_t end = std::min(text.find_first_of(" ,;", start), text.size());
+    const std::string token = text.substr(start, end - start);
+    char* rest = nullptr;
+    const double w = std::strtod(token.c_str(), &rest);
+    if (rest == token.c_str() || *rest != '\0')
+      throw InputError(where, "mixturebsdf weight '" + token + "' is not a number");
+    if (!std::isfinite(w) || w < 0)
+      throw InputError(where, "mixturebsdf weight '" + token + "' must be finite and not negative");
+    weights.push_back(w);
+    at = end;
+  }
+  return weights;
 }
 
 }  // namespace
@@ -89,6 +140,31 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
   Material m;
   m.name = id.empty() ? type : id;
   Warnings& w = scene_.warnings;
+  // A part of a blendbsdf or mixturebsdf (any BSDF, blends too).
+  auto blendPart = [&](const pugi::xml_node& c) -> Material {
+    Material part = scene_.materials[size_t(materialOf(c))];
+    if (part.isCoating()) {
+      w.add(doc.where(c), "a coating inside a " + type + " is not supported; using the coating's nested BSDF");
+      Material under = part.coated[0];
+      part = under;
+    }
+    // Cut-outs and shading maps act on the whole surface: only the outermost wrapper's count.
+    if (part.masked || part.shadingMap != ShadingMap::None)
+      w.add(doc.where(c), "a mask, normalmap or bumpmap inside a " + type + " is ignored; wrap the " + type + " instead");
+    return part;
+  };
+  // A blend tree (nested blendbsdf and mixturebsdf): at most kMaxBlendLeaves BSDFs, and one
+  // smooth dielectric.
+  auto checkBlendTree = [&](Material& tree) {
+    if (tree.blendLeaves() > kMaxBlendLeaves)
+      throw InputError(doc.where(node), type + " holds " + std::to_string(tree.blendLeaves()) +
+                                            " BSDFs with its nested blends (and any absorbed share); at most " +
+                                            std::to_string(kMaxBlendLeaves) + " are supported");
+    std::optional<Material> first;
+    if (keepFirstSmoothRefraction(tree, first) > 0)
+      w.add(doc.where(node), type + " holds more than one smooth dielectric, which is not supported; the first takes "
+                                    "the weights of the others");
+  };
   if (type == "diffuse" || type == "roughdiffuse") {
     m.kind = BsdfKind::Diffuse;
     m.reflectance = props.getColorParam("reflectance", Color(0.5f), scene_);
@@ -102,8 +178,7 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     }
   } else if (type == "twosided") {
     m = wrapped();
-    m.twoSided = true;
-    for (Material& part : m.blendParts) part.twoSided = true;  // a blend's parts do the shading
+    makeTwoSided(m);
   } else if (type == "mask") {
     m = wrapped();
     m.masked = true;
@@ -114,37 +189,82 @@ int SceneBuilder::bsdf(const Document& doc, const pugi::xml_node& node) {
     for (const pugi::xml_node& c : children) {
       if (!isBsdf(c)) continue;
       if (m.blendParts.size() == 2) throw InputError(doc.where(c), "blendbsdf takes two nested BSDFs, not more");
-      Material part = scene_.materials[size_t(materialOf(c))];
-      if (part.kind == BsdfKind::Blend) {
-        w.add(doc.where(c), "a blendbsdf inside a blendbsdf is not supported; using its first BSDF");
-        Material first = part.blendParts[0];
-        part = first;
-      }
-      if (part.isCoating()) {
-        w.add(doc.where(c), "a coating inside a blendbsdf is not supported; using the coating's nested BSDF");
-        Material under = part.coated[0];
-        part = under;
-      }
-      // Cut-outs and shading maps act on the whole surface: only the outermost wrapper's count.
-      if (part.masked || part.shadingMap != ShadingMap::None)
-        w.add(doc.where(c), "a mask, normalmap or bumpmap inside a blendbsdf is ignored; wrap the blendbsdf instead");
-      m.blendParts.push_back(part);
+      m.blendParts.push_back(blendPart(c));
     }
     if (m.blendParts.size() != 2) throw InputError(doc.where(node), "blendbsdf needs two nested BSDFs");
     // ERPT follows a specular chain through "the" refraction of a vertex: two smooth
     // dielectrics would give it two (and a wrong radiance scale for one of them).
-    auto refracts = [](const Material& p) { return p.kind == BsdfKind::Dielectric || p.kind == BsdfKind::ThinDielectric; };
-    if (refracts(m.blendParts[0]) && refracts(m.blendParts[1])) {
+    if (refractsSmoothly(m.blendParts[0]) && refractsSmoothly(m.blendParts[1])) {
       w.add(doc.where(node), "a blendbsdf of two smooth dielectrics is not supported; using its first BSDF");
       const std::string name = m.name;
       Material first = m.blendParts[0];
       m = first;
       m.name = name;
+    } else {
+      checkBlendTree(m);
     }
     m.blendWeight = props.getColorParam("weight", Color(0.5f), scene_);
     const Color wv = m.blendWeight.value;
     if (m.blendWeight.texture < 0 && !(wv.x >= 0 && wv.x <= 1 && wv.y >= 0 && wv.y <= 1 && wv.z >= 0 && wv.z <= 1))
       throw InputError(props.find("weight")->where, "blendbsdf weight must be in [0, 1]");
+  } else if (type == "mixturebsdf") {
+    // sum_i w_i f_i (Mitsuba 0.6), as a chain of blends: blend(A_1, blend(A_2, ...)) whose
+    // weights give each A_i its share w_i; weights summing above 1 are normalized (Mitsuba's
+    // ensureEnergyConservation), and below 1 the rest 1 - sum goes to a black diffuse part
+    // (absorbed).
+    std::vector<Material> parts;
+    for (const pugi::xml_node& c : children)
+      if (isBsdf(c)) parts.push_back(blendPart(c));
+    if (parts.empty()) throw InputError(doc.where(node), "mixturebsdf needs nested BSDFs");
+    const Property* weightsProp = props.find("weights");
+    if (!weightsProp) throw InputError(doc.where(node), "mixturebsdf needs 'weights', one per nested BSDF");
+    const std::vector<double> weights = mixtureWeights(props.getString("weights", ""), weightsProp->where);
+    if (weights.size() != parts.size())
+      throw InputError(weightsProp->where, "mixturebsdf has " + std::to_string(weights.size()) + " weights for " +
+                                               std::to_string(parts.size()) + " nested BSDFs");
+    double sum = 0;
+    for (double x : weights) sum += x;
+    if (!(sum > 0)) throw InputError(weightsProp->where, "mixturebsdf weights must not all be 0");
+    const bool conserve = props.getBool("ensure_energy_conservation", true);
+    if (sum > 1 && !conserve) {
+      std::ostringstream total;
+      total << sum;
+      w.add(props.find("ensure_energy_conservation")->where,
+            "mixturebsdf weights summing to " + total.str() +
+                " > 1 without ensureEnergyConservation are not supported (a blend cannot add energy); normalized to 1");
+    }
+    const double scale = sum > 1 ? 1 / sum : 1.0;
+    std::vector<Material> leaves;
+    std::vector<double> shares;
+    for (size_t i = 0; i < parts.size(); ++i)
+      if (weights[i] > 0) {
+        leaves.push_back(parts[i]);
+        shares.push_back(weights[i] * scale);
+      }
+    if (sum < 1 - 1e-6) {
+      Material black;
+      black.name = m.name + " (absorbed share)";
+      black.kind = BsdfKind::Diffuse;
+      black.reflectance = ColorParam{Color(0.0f)};
+      leaves.push_back(black);
+      shares.push_back(1 - sum);
+    }
+    // From the back: the blend of leaves j.. takes leaf j with share p_j / (p_j + p_j+1 + ...).
+    Material chain = leaves.back();
+    double rest = shares.back();
+    for (size_t j = leaves.size() - 1; j-- > 0;) {
+      Material b;
+      b.name = m.name;
+      b.kind = BsdfKind::Blend;
+      b.blendParts = {leaves[j], chain};
+      b.blendWeight = ColorParam{Color(float(rest / (rest + shares[j])))};
+      rest += shares[j];
+      chain = std::move(b);
+    }
+    const std::string name = m.name;
+    m = std::move(chain);
+    m.name = name;
+    checkBlendTree(m);
   } else if (type == "normalmap" || type == "bumpmap") {
     m = wrapped();
     const int map = nestedTexture(doc, props, children);

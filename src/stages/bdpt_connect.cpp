@@ -195,7 +195,9 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
       const Color value = y.beta * f * ls.radiance * (w / (ls.delta ? 1.0f : ls.pdf));
       if (isBlack(value)) continue;
       const Vec3 origin = offsetOrigin(y.p, y.ng, ls.direction);
-      const Vec3 target = ls.environment ? origin + ls.direction * 1e7f : ls.position;
+      // The light point pushed off its surface too (surface.h's shadowSegment says why).
+      const Vec3 target = ls.environment ? origin + ls.direction * 1e7f
+                                         : offsetOrigin(ls.position, ls.delta ? Vec3(0.0f) : ls.normal, -ls.direction);
       addConnection(sample, 1, j + 1, value, w, cameraIndex[size_t(j)], addExtra(lightVertex), &origin, target, 0, 0);
       if (ls.environment) rays.tfar[connections.size() - 1] = std::numeric_limits<float>::infinity();
     }

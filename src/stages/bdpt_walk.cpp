@@ -7,7 +7,9 @@
 // throughput. A light vertex z_i's beta is the light part of f over its density, which ends in
 // 1 / |cos_g(z_i -> z_{i-1})|: the connection's F at z_i (with its shading cosine towards
 // z_{i-1}) completes it into Veach's adjoint shading-normal factor. The light vertex's own
-// beta is 1 / pdfPosition (its emission is evaluated at the connection).
+// beta is 1 / pdfPosition (its emission is evaluated at the connection). A bounce's weight is
+// bsdfAdjointWeight's: for a Dirac lobe, the lobe's own weight without radiance's eta^2
+// (docs/bdpt.md, "Light subpaths through Dirac lobes").
 #include <limits>
 
 #include "core/rng.h"
@@ -182,21 +184,14 @@ void stageBdptExtend(const BdptContext& ctx, BdptSide side, BdptSubpaths& paths,
     BsdfSample bs;
     if (!bsdfSample(*bsdf.material, bsdf.colors, wiLocal, uniformFloat(key, bounceDim(depth, kLobe)),
                     uniformFloat(key, bounceDim(depth, kBsdf1)), uniformFloat(key, bounceDim(depth, kBsdf2)), bs) ||
-        !(bs.pdf > 0))
+        !(bs.pdf > 0) || bs.wo.z == 0)
       continue;
     const Vec3 wo = bsdf.frame.toWorld(bs.wo);
     const float cosOut = std::abs(dot(x.ng, wo));
     Color weight = bs.weight;
-    if (fromLight) {  // the adjoint: the radiance BSDF with the sampled direction on the camera side
-      Color f;
-      if (bs.delta) {
-        float probability;
-        if (!bsdfDeltaLobe(*bsdf.material, bsdf.colors, bs.wo, wiLocal, f, probability)) continue;
-      } else {
-        f = bsdfEval(*bsdf.material, bsdf.colors, bs.wo, wiLocal);
-      }
-      weight = f * (cosOut / bs.pdf);  // times x.beta, which holds 1 / cosIn
-    }
+    if (fromLight)  // the adjoint with Veach's shading-normal factor; times x.beta, which holds 1 / cosIn
+      weight = bsdfAdjointWeight(*bsdf.material, bsdf.colors, wiLocal, bs) *
+               (cosOut * std::abs(wiLocal.z) / std::abs(bs.wo.z));
     if (isBlack(weight)) continue;
     // The previous vertex as sampled from here (the camera's is never needed: t >= 1).
     if (prev.kind != kEyeVertex) {

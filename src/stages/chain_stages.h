@@ -121,8 +121,11 @@ size_t stageChainTrace(const StepConfig& ctx, const ChainQueue& chains, const Ve
 // offset off its surface); `toInfinity` follows `dir` out of the scene instead.
 inline void setConnectionRay(RayQueue& shadowRays, size_t i, const PathVertex& from, Vec3 to, bool toInfinity, Vec3 dir) {
   const Vec3 origin = offsetOrigin(from.p, from.ng, dir);
-  const float tfar = toInfinity ? std::numeric_limits<float>::infinity() : length(to - origin) * (1 - 1e-4f);
-  setRay(shadowRays, i, origin, dir, 0.0f, tfar);
+  if (toInfinity) return setRay(shadowRays, i, origin, dir, 0.0f, std::numeric_limits<float>::infinity());
+  // Aimed at `to` itself (surface.h's shadowSegment says why), just short of it.
+  const Vec3 span = to - origin;
+  const float length = std::sqrt(dot(span, span));
+  setRay(shadowRays, i, origin, span / length, 0.0f, length * (1 - 1e-4f));
 }
 
 // The bidirectional mutation's stage (chain_bidirectional.cpp), after the mutate stage: the

@@ -138,7 +138,8 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
     const V3 toLight = lightPoint - position;
     const batch dist2 = dot(toLight, toLight);
     const V3 lightDir = toLight / xsimd::sqrt(dist2);
-    const batch cosLight = -dot(gather3(lights.normalX, lights.normalY, lights.normalZ, light), lightDir);
+    const V3 lightNormal = gather3(lights.normalX, lights.normalY, lights.normalZ, light);
+    const batch cosLight = -dot(lightNormal, lightDir);
     const batch lightPdf = gather(lights.pdfArea, light) * dist2 / cosLight;
     const batch cosOut = dot(lightDir, frame.n) * flip;
     const V3 f = reflectance * (cosOut * kInvPi);
@@ -156,11 +157,10 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
     put(kNeeBsdfPdf, bsdfPdf);
     put3(kLightPx, lightPoint);
     put3(kNeeR, throughput * contribution);
-    const V3 shadowOrigin = offsetOrigin(position, ng, lightDir);
-    const V3 shadowSpan = lightPoint - shadowOrigin;
-    put3(kShadowOx, shadowOrigin);
-    put3(kShadowDx, lightDir);
-    put(kShadowTfar, xsimd::sqrt(dot(shadowSpan, shadowSpan)) * (1 - 1e-4f));
+    const LaneShadowSegment shadow = shadowSegment(position, ng, lightPoint, lightNormal);
+    put3(kShadowOx, shadow.origin);
+    put3(kShadowDx, shadow.direction);
+    put(kShadowTfar, shadow.tfar);
 
     // The cosine-weighted bounce (bsdfSample's diffuse lobe).
     const V3 wo = cosineHemisphere(get(kUBsdf1), get(kUBsdf2));

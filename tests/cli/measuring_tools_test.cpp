@@ -107,6 +107,30 @@ TEST(DiffCli, KnownImagesGiveKnownNumbers) {
   EXPECT_EQ(cyan.y, 1.0f);
 }
 
+// A reference of another size: an integer multiple is box-averaged, and the output says so
+// (a line of its own, so the figures are never read as against the full-size reference);
+// other sizes are refused. The same size prints no such line.
+TEST(DiffCli, SaysWhenTheReferenceWasDownsampled) {
+  test::TempDir dir;
+  writeImageAtomic(dir.file("a.exr"), row({Color(1.0f), Color(2.0f)}));
+  RgbImage big;
+  big.width = 4, big.height = 2;
+  big.pixels = {Color(0.5f), Color(1.5f), Color(2.0f), Color(2.0f), Color(1.0f), Color(1.0f), Color(2.0f), Color(2.0f)};
+  writeImageAtomic(dir.file("big.exr"), big);
+  test::CommandResult r = test::runCli("diff " + dir.file("a.exr") + " " + dir.file("big.exr"));
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("reference_downsampled 2 (the reference (4x2) is box-averaged over 2x2 pixels to the image's 2x1"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("mse 0\n"), std::string::npos) << r.output;  // (0.5 + 1.5 + 1 + 1) / 4 = 1, then 2
+  r = test::runCli("diff " + dir.file("a.exr") + " " + dir.file("a.exr"));
+  EXPECT_EQ(r.output.find("reference_downsampled"), std::string::npos) << r.output;
+  writeImageAtomic(dir.file("odd.exr"), row({Color(1.0f), Color(1.0f), Color(1.0f)}));
+  r = test::runCli("diff " + dir.file("a.exr") + " " + dir.file("odd.exr"));
+  EXPECT_NE(r.exitCode, 0);
+  EXPECT_NE(r.output.find("not the same size or an integer multiple"), std::string::npos) << r.output;
+}
+
 TEST(DiffCli, UnreadableFilesAndBadHeatmapNamesAreClearErrors) {
   test::TempDir dir;
   writeImageAtomic(dir.file("a.exr"), row({Color(1.0f)}));

@@ -929,6 +929,111 @@ TEST(BsdfDelta, DeltaLobeIsZeroOffItsDirection) {
 }
 
 // ---------------------------------------------------------------------------------------
+// The adjoint (importance transport, bsdfAdjointWeight): sampled from wi on the light side,
+// its mean weight is the importance albedo, computed here without the sampler: the radiance
+// BSDF with wi and wo swapped, integrated over the sphere of wo by quadrature, plus each Dirac
+// lobe's value from bsdfDeltaLobe with a refraction's radiance scaling removed
+// (deltaRadianceScale, the factor the caustic perturbation uses). A refraction carries its
+// Fresnel transmittance T, not T / eta^2 (Veach's thesis, 5.2); a coating over a mirror, whose
+// top and coated mirror reflect along one direction, carries the sum of the two lobes, not
+// twice it.
+
+// The importance albedo at wi from eval and bsdfDeltaLobe: a 1024 x 512 midpoint grid in
+// (cos theta, phi) for the smooth part.
+double importanceAlbedo(const Material& m, const SurfaceColors& c, Vec3 wi) {
+  const int nz = 1024, nphi = 512;
+  double smooth = 0;
+  for (int a = 0; a < nz; ++a) {
+    const double z = -1 + (a + 0.5) * 2.0 / nz, r = std::sqrt(std::max(0.0, 1 - z * z));
+    for (int b = 0; b < nphi; ++b) {
+      const double phi = (b + 0.5) * 2 * kPiDouble / nphi;
+      const Vec3 wo(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
+      smooth += luminance(bsdfEval(m, c, wo, wi)) / std::abs(wi.z) * std::abs(wo.z);
+    }
+  }
+  smooth *= 4 * kPiDouble / (double(nz) * nphi);
+  double dirac = 0;
+  for (bool reflection : {true, false}) {
+    Vec3 lobe;
+    Color value;
+    float probability;
+    if (!specularDirection(m, wi, reflection, lobe) || !bsdfDeltaLobe(m, c, lobe, wi, value, probability)) continue;
+    dirac += luminance(value) / deltaRadianceScale(m, lobe, wi);
+  }
+  return smooth + dirac;
+}
+
+TEST(BsdfAdjoint, MeanWeightIsTheImportanceAlbedo) {
+  const Material mirror = conductor(Color(0.0f), Color(1e4f));
+  struct Case {
+    std::string name;
+    Material material;
+    bool bothSides;  // wi from inside too (transmissive materials)
+  };
+  const std::vector<Case> cases = {
+      {"dielectric", dielectric(), true},
+      {"dielectric ior 2.0", dielectric(2.0f), true},
+      {"thindielectric", dielectric(1.5f, 1.0f, BsdfKind::ThinDielectric), true},
+      {"conductor", conductor(kGoldEta, kGoldK), false},
+      {"plastic", plastic(Color(0.6f, 0.4f, 0.2f)), false},
+      {"coating over a mirror", coating(mirror), false},
+      {"absorbing coating over gold", coating(conductor(kGoldEta, kGoldK), Color(0.3f, 0.1f, 0.05f)), false},
+      {"coating over diffuse", coating(diffuse()), false},
+      {"blend conductor + dielectric", blend(conductor(kGoldEta, kGoldK), dielectric(), 0.4f), true},
+      {"blend diffuse + mirror", blend(diffuse(), mirror, 0.3f), false},
+      {"roughdielectric", roughDielectric(MicrofacetKind::GGX, 0.3f), true},
+      {"roughconductor", roughConductor(MicrofacetKind::Beckmann, 0.3f), false},
+      {"roughcoating over diffuse", roughCoating(diffuse(), MicrofacetKind::GGX, 0.3f), false},
+      {"phong", phong(20.0f), false},
+      {"diffuse", diffuse(), false}};
+  const int n = 200000;
+  for (const Case& k : cases) {
+    const SurfaceColors colors = colorsOf(k.material);
+    for (float theta : {10.0f, 45.0f, 75.0f})
+      for (float side : {1.0f, -1.0f}) {
+        if (side < 0 && !k.bothSides) continue;
+        Vec3 wi = direction(theta);
+        wi.z *= side;
+        double sum = 0, sum2 = 0;
+        for (int i = 0; i < n; ++i) {
+          BsdfSample s;
+          double w = 0;
+          if (bsdfSample(k.material, colors, wi, testUniform(uint64_t(i), 0, 23), testUniform(uint64_t(i), 1, 23),
+                         testUniform(uint64_t(i), 2, 23), s))
+            w = luminance(bsdfAdjointWeight(k.material, colors, wi, s));
+          sum += w;
+          sum2 += w * w;
+        }
+        const double mean = sum / n, error = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / n);
+        const double expected = importanceAlbedo(k.material, colors, wi);
+        // Five standard errors of the sampled side, and 0.5% for the quadrature of glossy lobes.
+        EXPECT_NEAR(mean, expected, 5 * error + 5e-3 * expected)
+            << k.name << ", theta " << theta << (side < 0 ? " from inside" : "") << " (sampled +- " << error << ")";
+      }
+  }
+}
+
+// For a refraction the adjoint weight is the Fresnel transmittance itself: what crosses a
+// lossless interface as importance (a particle's power) is conserved, while radiance scales by
+// (n_t / n_i)^2.
+TEST(BsdfAdjoint, SmoothRefractionCarriesTheFresnelTransmittance) {
+  const Material glass = dielectric();
+  const SurfaceColors colors = colorsOf(glass);
+  for (float side : {1.0f, -1.0f}) {
+    Vec3 wi = direction(30.0f);
+    wi.z *= side;
+    BsdfSample s;
+    ASSERT_TRUE(bsdfSample(glass, colors, wi, 0.999f, 0.5f, 0.5f, s));  // u1 past F: the refraction
+    ASSERT_LT(s.wo.z * wi.z, 0.0f);
+    const double t = 1 - referenceFresnelDielectric(std::abs(wi.z), side > 0 ? 1.0 : 1.5, side > 0 ? 1.5 : 1.0);
+    EXPECT_NEAR(bsdfAdjointWeight(glass, colors, wi, s).y * s.pdf, t, 1e-5) << "side " << side;
+    const double eta = side > 0 ? 1.5 : 1 / 1.5;  // n_t / n_i
+    EXPECT_NEAR(s.weight.y * s.pdf, t / (eta * eta), 1e-5) << "radiance: scaled by (n_i / n_t)^2";
+  }
+}
+
+
+// ---------------------------------------------------------------------------------------
 // Fresnel and microfacet building blocks
 
 TEST(Fresnel, DiffuseFresnelReflectanceIsPlausible) {
