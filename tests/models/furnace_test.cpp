@@ -42,6 +42,22 @@ TEST(StatisticalFurnace, DiffuseSphereReflectsItsAlbedo) {
   EXPECT_NEAR(m.z, 1.8f, 0.01f * 1.8f);
 }
 
+// The constructs of Mitsuba 0.6 interiors (Bitterli's living room) that once loaded as a
+// different scene, each against the same closed form: a diffuse BSDF's `diffuseReflectance`
+// (an alias of `reflectance`; it was ignored, leaving 0.5 grey), and a mixturebsdf of two
+// diffuse BSDFs with weights summing below 1 (only its first BSDF used to be rendered, at full
+// weight): albedo 0.3 * 0.6 + 0.5 * 0.2 = 0.28, the other 0.2 absorbed.
+TEST(StatisticalFurnace, LivingRoomConstructsReflectTheirAlbedo) {
+  Color m = furnaceMean(R"(<bsdf type="diffuse"><rgb name="diffuseReflectance" value="0.7, 0.3, 0.1"/></bsdf>)");
+  EXPECT_NEAR(m.x, 1.4f, 0.01f * 1.4f);
+  EXPECT_NEAR(m.y, 0.6f, 0.01f * 0.6f);
+  EXPECT_NEAR(m.z, 0.2f, 0.01f * 0.2f);
+  m = furnaceMean(R"(<bsdf type="mixturebsdf"><string name="weights" value="0.3, 0.5"/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.6"/></bsdf>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.2"/></bsdf></bsdf>)");
+  EXPECT_NEAR(m.y, 2.0f * 0.28f, 0.01f * 0.56f);
+}
+
 TEST(StatisticalFurnace, SmoothGlassSphereIsInvisible) {
   const Color m = furnaceMean(R"(<bsdf type="dielectric"><float name="int_ior" value="1.5"/></bsdf>)");
   EXPECT_NEAR(m.y, 2.0f, 0.01f * 2.0f);
