@@ -13,6 +13,14 @@
 
 namespace erpt {
 
+// The ranges of the options every integrator takes: the CLI's checks and the Python module's
+// (which refuse a value out of range as the CLI does) read them here.
+struct CommonOptionRange {
+  double low, high;
+};
+constexpr CommonOptionRange kSppRange{1, 1 << 24}, kImageSizeRange{1, 65536}, kThreadsRange{0, 1024},
+    kMaxDepthRange{-1, 100000}, kTimeRange{1e-3, 1e7};
+
 struct RenderRequest {
   std::string integrator;  // empty: the scene's, if it is one of ours, else the default
   int spp = 0, width = 0, height = 0, threads = 0;

@@ -10,13 +10,33 @@
 
 Every render option of `erpt render --help` is a keyword argument of render(), dashes as
 underscores, validated by the integrator's own option table; errors raise erpt.Error (a
-RuntimeError) with the CLI's one-line `file:line: cause` text. The image of render() is
-bit-identical to the CLI's for the same scene, seed and options.
+RuntimeError) with the CLI's one-line `file:line: cause` text, and a common option of the wrong
+type or out of the CLI's range raises erpt.OptionTypeError (also a TypeError) or
+erpt.OptionValueError (also a ValueError) naming it and its range. Without an integrator,
+render() uses the scene's, as the CLI does. The image of render() is bit-identical to the CLI's
+for the same scene, seed and options. The loader's warnings are Python warnings
+(erpt.SceneWarning).
 """
 
-from ._erpt import Error, Result, Scene, diff, integrators, load_scene, read_image, render
+import sys as _sys
 
-__all__ = ["Error", "Result", "Scene", "compare", "diff", "integrators", "load_scene", "read_image", "render"]
+from . import _build_info
+
+__version__ = _build_info.version
+
+try:
+    from ._erpt import (Error, OptionTypeError, OptionValueError, Result, Scene, SceneWarning, diff, integrators,
+                        load_scene, read_image, render)
+except ImportError as _error:
+    if _sys.version_info[:2] != _build_info.python:
+        raise ImportError(
+            "erpt's compiled part was built for Python %d.%d (%s), and this is Python %d.%d (%s): run it with that "
+            "interpreter, or build erpt for this one" % (*_build_info.python, _build_info.interpreter,
+                                                         *_sys.version_info[:2], _sys.executable)) from _error
+    raise
+
+__all__ = ["Error", "OptionTypeError", "OptionValueError", "Result", "Scene", "SceneWarning", "compare", "diff",
+           "integrators", "load_scene", "read_image", "render"]
 
 
 def compare(scene, reference, integrators=("path", "erpt"), time=10.0, **options):

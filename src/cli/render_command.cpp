@@ -50,13 +50,16 @@ std::string takenBy(const std::string& option) {
 }  // namespace
 
 void addRenderOptions(CLI::App* cmd, RenderArgs& a) {
-  cmd->add_option("--spp", a.spp, "Samples per pixel (default: the scene's sample_count)")->check(CLI::Range(1, 1 << 24));
-  cmd->add_option("--width", a.width, "Image width in pixels (default: the scene's film)")->check(CLI::Range(1, 65536));
-  cmd->add_option("--height", a.height, "Image height in pixels (default: the scene's film)")->check(CLI::Range(1, 65536));
-  cmd->add_option("--threads", a.threads, "Worker threads (default 0 = all cores)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--spp", a.spp, "Samples per pixel (default: the scene's sample_count)")->check(CLI::Range(int(kSppRange.low), int(kSppRange.high)));
+  cmd->add_option("--width", a.width, "Image width in pixels (default: the scene's film)")
+      ->check(CLI::Range(int(kImageSizeRange.low), int(kImageSizeRange.high)));
+  cmd->add_option("--height", a.height, "Image height in pixels (default: the scene's film)")
+      ->check(CLI::Range(int(kImageSizeRange.low), int(kImageSizeRange.high)));
+  cmd->add_option("--threads", a.threads, "Worker threads (default 0 = all cores)")
+      ->check(CLI::Range(int(kThreadsRange.low), int(kThreadsRange.high)));
   cmd->add_option("--seed", a.seed, "Random seed; the same seed gives the same image for any --threads");
   cmd->add_option("--max-depth", a.maxDepth, "Longest path in segments, Mitsuba's meaning (-1 = unbounded)")
-      ->check(CLI::Range(-1, 100000));
+      ->check(CLI::Range(int(kMaxDepthRange.low), int(kMaxDepthRange.high)));
   cmd->add_option("--filter", a.filter, "Pixel filter: box, tent or gaussian (default: the scene's rfilter)")
       ->check(CLI::IsMember({"box", "tent", "gaussian"}));
   cmd->add_option("-D,--define", a.defines, "Override a scene <default>: -D name=value (repeatable)");
@@ -85,7 +88,7 @@ void addRenderCommand(CLI::App& app, RenderArgs& a) {
   for (const IntegratorModule& m : integratorModules()) integrators += (integrators.empty() ? "" : "; ") + m.name + ": " + m.description;
   cmd->add_option("--integrator", a.integrator, "Integrator (default: the scene's, if it is one of these, else path). " + integrators);
   cmd->add_option("--time", a.time, "Render for this many seconds instead of --spp samples per pixel (passes of growing spp; the image then depends on the machine's speed)")
-      ->check(CLI::Range(1e-3, 1e7));
+      ->check(CLI::Range(kTimeRange.low, kTimeRange.high));
   cmd->add_option("--checkpoint", a.checkpoint, "Write the render's state to FILE (atomically) every --checkpoint-every seconds and when it ends or is stopped; continue it with `erpt resume FILE` (" + takenBy("--checkpoint") + ")");
   cmd->add_option("--checkpoint-every", a.checkpointEvery, "Seconds between checkpoints (default 300; written at the end of a group of sample passes)")
       ->check(CLI::Range(0.0, 1e7));

@@ -16,6 +16,8 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <cstdio>
+#include <stdexcept>
 #include <exception>
 #include <filesystem>
 #include <mutex>
@@ -39,7 +41,25 @@ namespace {
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
 
 // erpt.Error: every InputError and UsageError, with the same one-line text as the CLI's.
+// erpt.OptionTypeError and erpt.OptionValueError (subclasses of it and of TypeError and
+// ValueError): a render option of the wrong type, or out of the range the CLI accepts.
 PyObject* errorType = nullptr;
+PyObject* optionTypeErrorType = nullptr;
+PyObject* optionValueErrorType = nullptr;
+// erpt.SceneWarning: the scene loader's warnings, as Python warnings.
+PyObject* sceneWarningType = nullptr;
+
+struct OptionTypeError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+struct OptionValueError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// os.fspath: a str or a path-like object (pathlib.Path) as a path string.
+std::string pathOf(const py::object& path) {
+  return py::module_::import("os").attr("fspath")(path).cast<std::string>();
+}
 
 struct PyScene {
   std::shared_ptr<const Scene> scene;
@@ -65,8 +85,7 @@ py::array_t<float> toArray(const RgbImage& image) {
 
 // An image from a (height, width, 3) array or a file path.
 RgbImage toImage(const py::object& source) {
-  if (py::isinstance<py::str>(source) || py::isinstance(source, py::module_::import("pathlib").attr("PurePath")))
-    return readImage(py::str(source).cast<std::string>());
+  if (py::isinstance<py::str>(source) || py::hasattr(source, "__fspath__")) return readImage(pathOf(source));
   const FloatArray a = FloatArray::ensure(source);
   if (!a || a.ndim() != 3 || a.shape(2) != 3)
     throw UsageError("an image must be a path or an array of shape (height, width, 3)");
@@ -91,7 +110,23 @@ std::string optionText(const py::handle& value) {
   return py::str(value).cast<std::string>();
 }
 
-// The options every integrator takes, as keyword arguments.
+std::string typeNameOf(const py::handle& value) { return py::str(py::type::of(value).attr("__name__")).cast<std::string>(); }
+
+// A common integer option: a Python int (not a bool) within `range`, refused as the CLI refuses it.
+long long integerOption(const std::string& name, const py::handle& value, CommonOptionRange range) {
+  char allowed[96];
+  std::snprintf(allowed, sizeof allowed, "an integer in [%.0f, %.0f]", range.low, range.high);
+  if (py::isinstance<py::bool_>(value) || !py::isinstance<py::int_>(value))
+    throw OptionTypeError(name + " must be " + allowed + ", not " + py::repr(value).cast<std::string>() + " (" +
+                          typeNameOf(value) + ")");
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+  if (overflow != 0 || double(v) < range.low || double(v) > range.high)
+    throw OptionValueError(name + " must be " + allowed + ", not " + py::repr(value).cast<std::string>());
+  return v;
+}
+
+// The options every integrator takes, as keyword arguments; None leaves an option unset.
 RenderRequest requestOf(const std::string& integrator, const py::kwargs& options) {
   RenderRequest r;
   r.integrator = integrator;
@@ -100,14 +135,36 @@ RenderRequest requestOf(const std::string& integrator, const py::kwargs& options
     std::string flag = name;
     std::replace(flag.begin(), flag.end(), '_', '-');
     flag = "--" + flag;
-    if (name == "spp") r.spp = value.cast<int>();
-    else if (name == "width") r.width = value.cast<int>();
-    else if (name == "height") r.height = value.cast<int>();
-    else if (name == "threads") r.threads = value.cast<int>();
-    else if (name == "seed") r.seed = value.cast<uint64_t>();
-    else if (name == "max_depth") r.maxDepth = value.cast<int>();
-    else if (name == "time") r.time = value.cast<double>();
-    else if (name == "filter") r.filter = value.cast<std::string>();
+    if (value.is_none()) continue;
+    if (name == "spp") r.spp = int(integerOption(name, value, kSppRange));
+    else if (name == "width") r.width = int(integerOption(name, value, kImageSizeRange));
+    else if (name == "height") r.height = int(integerOption(name, value, kImageSizeRange));
+    else if (name == "threads") r.threads = int(integerOption(name, value, kThreadsRange));
+    else if (name == "max_depth") r.maxDepth = int(integerOption(name, value, kMaxDepthRange));
+    else if (name == "seed") {
+      if (py::isinstance<py::bool_>(value) || !py::isinstance<py::int_>(value))
+        throw OptionTypeError("seed must be an integer in [0, 2^64 - 1], not " + py::repr(value).cast<std::string>() +
+                              " (" + typeNameOf(value) + ")");
+      const unsigned long long seed = PyLong_AsUnsignedLongLong(value.ptr());
+      if (PyErr_Occurred()) {
+        PyErr_Clear();
+        throw OptionValueError("seed must be an integer in [0, 2^64 - 1], not " + py::repr(value).cast<std::string>());
+      }
+      r.seed = seed;
+    } else if (name == "time") {
+      if (py::isinstance<py::bool_>(value) || !(py::isinstance<py::int_>(value) || py::isinstance<py::float_>(value)))
+        throw OptionTypeError("time must be a number of seconds, not " + py::repr(value).cast<std::string>() + " (" +
+                              typeNameOf(value) + ")");
+      r.time = value.cast<double>();
+      if (!(r.time >= kTimeRange.low && r.time <= kTimeRange.high))
+        throw OptionValueError("time must be in [0.001, 1e7] seconds, not " + py::repr(value).cast<std::string>());
+    } else if (name == "filter") {
+      if (!py::isinstance<py::str>(value))
+        throw OptionTypeError("filter must be 'box', 'tent' or 'gaussian', not " + py::repr(value).cast<std::string>());
+      r.filter = value.cast<std::string>();
+      if (r.filter != "box" && r.filter != "tent" && r.filter != "gaussian")
+        throw OptionValueError("filter must be 'box', 'tent' or 'gaussian', not '" + r.filter + "'");
+    }
     else if (std::find(kSamplePassOptions.begin(), kSamplePassOptions.end(), flag) != kSamplePassOptions.end())
       throw UsageError("'" + name + "' is an option of the command line only (erpt render " + flag + ")");
     else if (integratorsUsing(flag).empty())
@@ -119,8 +176,6 @@ RenderRequest requestOf(const std::string& integrator, const py::kwargs& options
       r.options.emplace_back(flag.substr(2), optionText(value));
     r.given.push_back(flag);
   }
-  if (r.spp < 0 || r.width < 0 || r.height < 0 || r.threads < 0 || !(r.time >= 0))
-    throw UsageError("spp, width, height, threads and time must not be negative");
   return r;
 }
 
@@ -159,9 +214,10 @@ py::dict statsOf(const RenderSettings& s, const RenderStats& stats) {
 
 // Renders on a worker thread; the caller waits without the GIL and handles progress and
 // signals between waits.
-PyResult renderScene(const PyScene& scene, const std::string& integrator, const py::object& progress,
+PyResult renderScene(const PyScene& scene, const py::object& integrator, const py::object& progress,
                      const py::object& reference, const py::kwargs& options) {
-  const RenderRequest request = requestOf(integrator, options);
+  // No integrator: the scene's, if it is one of ours, else the default (as the CLI chooses).
+  const RenderRequest request = requestOf(integrator.is_none() ? std::string() : integrator.cast<std::string>(), options);
   RenderSettings s = settingsFor(*scene.scene, request);
   checkOptionScope(request.given, {s.integrator});
   PyResult result;
@@ -244,7 +300,11 @@ PyResult renderScene(const PyScene& scene, const std::string& integrator, const 
   return result;
 }
 
-void writeResult(const PyResult& r, const std::string& path) {
+void writeResult(const PyResult& r, const py::object& where) {
+  const std::string path = pathOf(where);
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder))
+    throw UsageError("cannot write '" + path + "': the folder '" + folder.string() + "' does not exist");
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".png") return writePngAtomic(path, r.image);
   writeImageAtomic(path, r.image);
@@ -315,6 +375,12 @@ PYBIND11_MODULE(_erpt, m) {
   m.doc() = "Energy Redistribution Path Tracing: scenes, renders and images (see help(erpt))";
   errorType = PyErr_NewException("erpt.Error", PyExc_RuntimeError, nullptr);
   m.attr("Error") = py::handle(errorType);
+  optionTypeErrorType = PyErr_NewException("erpt.OptionTypeError", py::make_tuple(py::handle(errorType), py::handle(PyExc_TypeError)).release().ptr(), nullptr);
+  m.attr("OptionTypeError") = py::handle(optionTypeErrorType);
+  optionValueErrorType = PyErr_NewException("erpt.OptionValueError", py::make_tuple(py::handle(errorType), py::handle(PyExc_ValueError)).release().ptr(), nullptr);
+  m.attr("OptionValueError") = py::handle(optionValueErrorType);
+  sceneWarningType = PyErr_NewException("erpt.SceneWarning", PyExc_UserWarning, nullptr);
+  m.attr("SceneWarning") = py::handle(sceneWarningType);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
@@ -322,6 +388,10 @@ PYBIND11_MODULE(_erpt, m) {
       PyErr_SetString(errorType, e.what());
     } catch (const UsageError& e) {
       PyErr_SetString(errorType, e.what());
+    } catch (const OptionTypeError& e) {
+      PyErr_SetString(optionTypeErrorType, e.what());
+    } catch (const OptionValueError& e) {
+      PyErr_SetString(optionValueErrorType, e.what());
     }
   });
 
@@ -342,7 +412,8 @@ PYBIND11_MODULE(_erpt, m) {
 
   m.def(
       "load_scene",
-      [](const std::string& path, const py::object& defaults, bool tessellateSpheres) {
+      [](const py::object& where, const py::object& defaults, bool tessellateSpheres) {
+        const std::string path = pathOf(where);
         LoadOptions load;
         load.tessellateSpheres = tessellateSpheres;
         if (!defaults.is_none())
@@ -353,14 +424,18 @@ PYBIND11_MODULE(_erpt, m) {
           py::gil_scoped_release release;
           s.scene = std::make_shared<const Scene>(loadScene(path, load));
         }
+        // The loader's warnings (an unsupported parameter, a plugin rendered differently) reach
+        // Python as warnings, as the CLI prints them.
+        for (const std::string& w : s.scene->warnings.messages)
+          if (PyErr_WarnEx(sceneWarningType, w.c_str(), 1) != 0) throw py::error_already_set();
         return s;
       },
       py::arg("path"), py::arg("defaults") = py::none(), py::kw_only(), py::arg("tessellate_spheres") = false,
       "Loads a Mitsuba 0.6 or 3 XML scene; `defaults` overrides its <default> values as the CLI's -D name=value; "
       "`tessellate_spheres` loads sphere shapes as triangle meshes (the CLI's --tessellate-spheres)");
-  m.def("render", &renderScene, py::arg("scene"), py::arg("integrator") = "path", py::kw_only(),
+  m.def("render", &renderScene, py::arg("scene"), py::arg("integrator") = py::none(), py::kw_only(),
         py::arg("progress") = py::none(), py::arg("reference") = py::none(),
-        "Renders `scene` with `integrator`; every render option of the CLI is a keyword argument (dashes as "
+        "Renders `scene` with `integrator` (default: the scene's, as the CLI chooses it); every render option of the CLI is a keyword argument (dashes as "
         "underscores: spp, width, height, seed, threads, time, max_depth, filter, mutations_per_pixel, ...). "
         "`progress(fraction)` is called as the render goes; `reference` (an image or path) records the error after "
         "every pass of a time-budgeted render in Result.curve. Ctrl-C stops the render between passes and returns "
@@ -369,7 +444,7 @@ PYBIND11_MODULE(_erpt, m) {
         "Error metrics of an image against a reference (arrays or paths; a reference an integer multiple of the "
         "image's size is box-downsampled): mse, rel_mse, mean, reference_mean, mean_ratio, nonfinite_pixels, "
         "black_pixels");
-  m.def("read_image", [](const std::string& path) { return toArray(readImage(path)); }, py::arg("path"),
+  m.def("read_image", [](const py::object& path) { return toArray(readImage(pathOf(path))); }, py::arg("path"),
         "Reads an image (EXR, PNG, any format OpenImageIO reads) as a linear float32 array (height, width, 3)");
   m.def("integrators", [] {
     std::vector<std::string> names;

@@ -210,3 +210,82 @@ def test_examples_run(tmp_path, script, args):
                        text=True, env=env, cwd=tmp_path)
     assert p.returncode == 0, p.stderr
     assert erpt.read_image(str(out)).shape[1] >= 500
+
+
+# Common options: wrong types and values the CLI refuses raise erpt.OptionTypeError (a TypeError)
+# or erpt.OptionValueError (a ValueError), both erpt.Error, naming the option and its range.
+@pytest.mark.parametrize("name, value, error, text", [
+    ("spp", "8", erpt.OptionTypeError, r"spp must be an integer in \[1, 16777216\], not '8' \(str\)"),
+    ("spp", 8.0, erpt.OptionTypeError, r"spp must be an integer in \[1, 16777216\], not 8\.0 \(float\)"),
+    ("spp", True, erpt.OptionTypeError, r"spp must be an integer .* \(bool\)"),
+    ("spp", 0, erpt.OptionValueError, r"spp must be an integer in \[1, 16777216\], not 0"),
+    ("spp", 2**40, erpt.OptionValueError, r"spp must be an integer in \[1, 16777216\], not 1099511627776"),
+    ("width", 0, erpt.OptionValueError, r"width must be an integer in \[1, 65536\], not 0"),
+    ("threads", -1, erpt.OptionValueError, r"threads must be an integer in \[0, 1024\]"),
+    ("max_depth", -2, erpt.OptionValueError, r"max_depth must be an integer in \[-1, 100000\]"),
+    ("seed", -1, erpt.OptionValueError, r"seed must be an integer in \[0, 2\^64 - 1\], not -1"),
+    ("seed", 1.5, erpt.OptionTypeError, r"seed must be an integer"),
+    ("time", 0, erpt.OptionValueError, r"time must be in \[0\.001, 1e7\] seconds, not 0"),
+    ("time", "5", erpt.OptionTypeError, r"time must be a number of seconds"),
+    ("filter", "mitchell", erpt.OptionValueError, r"filter must be 'box', 'tent' or 'gaussian', not 'mitchell'"),
+])
+def test_common_options_are_checked_as_the_cli_checks_them(scene, name, value, error, text):
+    assert issubclass(erpt.OptionTypeError, erpt.Error) and issubclass(erpt.OptionTypeError, TypeError)
+    assert issubclass(erpt.OptionValueError, erpt.Error) and issubclass(erpt.OptionValueError, ValueError)
+    with pytest.raises(error, match=text):
+        erpt.render(scene, "path", **{"spp": 1, "width": 8, "height": 8, name: value})
+    # The CLI refuses the same value (a number it can parse) with a non-zero exit.
+    if isinstance(value, int) and not isinstance(value, bool) and name != "seed":
+        flag = "--" + name.replace("_", "-")
+        r = cli("render", DEFAULT_SCENE, "-o", "/nonexistent/x.exr", "--width", 8, "--height", 8, flag, value)
+        assert r.returncode != 0 and flag in r.stderr + r.stdout
+
+
+def test_none_leaves_an_option_to_the_scene(scene):
+    r = erpt.render(scene, "path", width=8, height=8, spp=None, seed=None, threads=1)
+    assert r.stats["spp"] == scene.info()["spp"]
+
+
+# Without an integrator, render() uses the scene's, as the CLI does.
+def test_the_scenes_integrator_is_the_default(tmp_path):
+    text = DEFAULT_SCENE.read_text()
+    assert '<integrator type="path"' in text or "<integrator" in text
+    xml = tmp_path / "s.xml"
+    import re
+    xml.write_text(re.sub(r'<integrator type="\w+"', '<integrator type="erpt"', text, count=1))
+    s = erpt.load_scene(xml, defaults={"res": 32})
+    assert s.info()["integrator"] == "erpt"
+    r = erpt.render(s, spp=2, seed=3, width=24, height=16, threads=1)
+    assert r.stats["integrator"] == "erpt"
+    out = tmp_path / "cli.exr"
+    c = cli("render", xml, "-o", out, "-D", "res=32", "--spp", 2, "--seed", 3, "--width", 24, "--height", 16, "--threads", 1, "-q")
+    assert c.returncode == 0, c.stderr
+    assert np.array_equal(r.image, erpt.read_image(out))
+
+
+def test_paths_warnings_and_missing_folders(tmp_path):
+    bad = tmp_path / "w.xml"
+    bad.write_text('<scene version="3.0.0"><bsdf type="diffuse" id="m"><float name="colour" value="1"/></bsdf>'
+                   '<shape type="sphere"><ref id="m"/></shape></scene>')
+    with pytest.warns(erpt.SceneWarning, match="colour"):
+        s = erpt.load_scene(bad)  # a pathlib.Path
+    r = erpt.render(s, "path", spp=1, width=4, height=4)
+    r.write(tmp_path / "out.exr")  # a pathlib.Path
+    assert erpt.read_image(tmp_path / "out.exr").shape == (4, 4, 3)
+    with pytest.raises(erpt.Error, match=r"the folder '.*missing' does not exist"):
+        r.write(tmp_path / "missing" / "out.exr")
+    assert not (tmp_path / "missing").exists()
+
+
+def test_version_and_an_import_under_another_python(tmp_path):
+    assert erpt.__version__ and erpt.__version__[0].isdigit()
+    # A copy of the package whose compiled part was built for another interpreter.
+    import shutil
+    package = tmp_path / "erpt"
+    shutil.copytree(pathlib.Path(erpt.__file__).parent, package,
+                    ignore=lambda d, names: [n for n in names if n.startswith("_erpt") or n.endswith(".so")])
+    (package / "_build_info.py").write_text('version = "0"\npython = (2, 7)\ninterpreter = "/usr/bin/python2.7"\n')
+    r = subprocess.run([sys.executable, "-c", "import erpt"], capture_output=True, text=True,
+                       env={**os.environ, "PYTHONPATH": str(tmp_path)})
+    assert r.returncode != 0
+    assert "built for Python 2.7 (/usr/bin/python2.7)" in r.stderr, r.stderr
