@@ -11,6 +11,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   libopenmpi-dev openmpi-bin
   pybind11-dev python3-dev python3-numpy python3-matplotlib python3-pytest
+  python3-venv python3-setuptools python3-wheel
   "$@"
 )
 

@@ -289,3 +289,29 @@ def test_version_and_an_import_under_another_python(tmp_path):
                        env={**os.environ, "PYTHONPATH": str(tmp_path)})
     assert r.returncode != 0
     assert "built for Python 2.7 (/usr/bin/python2.7)" in r.stderr, r.stderr
+
+
+# `pip install .` (pyproject.toml, setup.py) into a venv that sees Debian's numpy: offline, with
+# the build tools Debian ships. The compiled part comes from the test's own CMake build
+# (ERPT_BUILD_DIR), which the install reuses; the package then imports outside the source tree,
+# is known to pip, and uninstalls.
+def test_pip_installs_the_package_into_a_venv(tmp_path):
+    venv = tmp_path / "v"
+    subprocess.run([sys.executable, "-m", "venv", "--system-site-packages", str(venv)], check=True)
+    pip = [str(venv / "bin" / "python"), "-m", "pip"]
+    env = {**os.environ, "ERPT_BUILD_DIR": str(BUILD), "PIP_NO_INDEX": "1"}
+    env.pop("PYTHONPATH", None)
+    r = subprocess.run([*pip, "install", "--no-build-isolation", str(ROOT)], capture_output=True, text=True, env=env,
+                       cwd=tmp_path)
+    assert r.returncode == 0, r.stdout + r.stderr
+    check = ("import erpt, pathlib; s = erpt.load_scene(%r, defaults={'res': 8}); "
+             "print(erpt.__version__, pathlib.Path(erpt.__file__).parent, erpt.render(s, spp=1).image.shape)" % str(DEFAULT_SCENE))
+    r = subprocess.run([str(venv / "bin" / "python"), "-c", check], capture_output=True, text=True, env=env, cwd=tmp_path)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.startswith(erpt.__version__ + " " + str(venv)) and "(8, 8, 3)" in r.stdout, r.stdout
+    listed = subprocess.run([*pip, "list"], capture_output=True, text=True, env=env).stdout
+    assert any(line.split()[:1] == ["erpt"] for line in listed.splitlines()), listed
+    r = subprocess.run([*pip, "uninstall", "-y", "erpt"], capture_output=True, text=True, env=env)
+    assert r.returncode == 0, r.stderr
+    r = subprocess.run([str(venv / "bin" / "python"), "-c", "import erpt"], capture_output=True, text=True, env=env, cwd=tmp_path)
+    assert r.returncode != 0
