@@ -78,7 +78,9 @@ struct RenderSettings {
 };
 
 struct RenderStats {
-  double seconds = 0;
+  // The render's wall time, and apart from it the time render() spent building the Embree
+  // scene when RenderSettings::tracer was unset (not part of `seconds` nor of a --time budget).
+  double seconds = 0, buildSeconds = 0;
   uint64_t samples = 0;
   uint64_t rays = 0;
   uint64_t invalidSamples = 0;  // NaN/Inf estimates, dropped and counted
@@ -109,6 +111,10 @@ RenderSettings resolveSettings(const Scene& scene, RenderSettings settings);
 // per pixel takes longer). ERPT keeps its configured ratio of mutations to seeds in every
 // pass: e_ave comes from one pilot pass, e_d = spp e_ave / M from the configured spp, and the
 // direct pass gets directSamples x (pass spp) / spp samples per pixel.
+// The Embree scene of `scene` (built with `threads`, 0: all cores), for RenderSettings::tracer:
+// a front end that renders one scene several times builds it once.
+std::shared_ptr<const Tracer> buildTracer(const Scene& scene, int threads);
+
 RgbImage render(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
 
 }  // namespace erpt

@@ -131,18 +131,25 @@ RenderSettings resolveSettings(const Scene& scene, RenderSettings s) {
   return s;
 }
 
+std::shared_ptr<const Tracer> buildTracer(const Scene& scene, int threads) {
+  ThreadPool pool(threads);  // the BVH build uses the threads the render may use
+  return std::make_shared<const Tracer>(scene);
+}
+
 RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
   RenderSettings s = resolveSettings(scene, requested);
-  const Clock::time_point start = Clock::now();
   const IntegratorModule& integrator = integratorNamed(s.integrator);
   // Before the BVH build, to fail fast: each declared option's range, then the integrator's
   // rules between options.
   for (const OptionSpec& option : integrator.options) checkOptionRange(option, s);
   integrator.validate(s);
   if (!s.tracer) {
-    ThreadPool pool(s.threads);  // the BVH build uses the threads the render may use
-    s.tracer = std::make_shared<const Tracer>(scene);
+    const Clock::time_point buildStart = Clock::now();
+    s.tracer = buildTracer(scene, s.threads);
+    stats.buildSeconds = secondsSince(buildStart);
   }
+  // The render's time (and a --time budget) starts once the scene is built.
+  const Clock::time_point start = Clock::now();
   if (s.timeBudget != 0 && (!(s.timeBudget > 0) || s.timeBudget > 1e7))
     throw UsageError("--time must be in (0, 10000000] seconds");
   if (s.share.split() && s.timeBudget != 0)

@@ -93,3 +93,25 @@ TEST(TimedRender, AbsurdBudgetsAreRejected) {
 
 }  // namespace
 }  // namespace erpt
+
+namespace erpt {
+namespace {
+
+// The Embree scene is built before the render's clock starts: its time is reported apart
+// (buildSeconds) and a render given a built one (RenderSettings::tracer) builds nothing.
+TEST(TimedRender, TheSceneBuildIsTimedApart) {
+  const Scene scene = cornell();
+  RenderSettings s = timed("path", 0);
+  s.spp = 1;
+  RenderStats built;
+  const RgbImage a = render(scene, s, built);
+  EXPECT_GT(built.buildSeconds, 0.0);
+  s.tracer = buildTracer(scene, 1);
+  RenderStats reused;
+  const RgbImage b = render(scene, s, reused);
+  EXPECT_EQ(reused.buildSeconds, 0.0);
+  test::expectBitIdentical(a, b);
+}
+
+}  // namespace
+}  // namespace erpt

@@ -315,3 +315,16 @@ def test_pip_installs_the_package_into_a_venv(tmp_path):
     assert r.returncode == 0, r.stderr
     r = subprocess.run([str(venv / "bin" / "python"), "-c", "import erpt"], capture_output=True, text=True, env=env, cwd=tmp_path)
     assert r.returncode != 0
+
+
+# A Scene builds its Embree scene at its first render and keeps it: later renders report no
+# build time, and the build is never part of `seconds` (nor of a time budget).
+def test_the_embree_scene_is_built_once_per_scene():
+    s = erpt.load_scene(DEFAULT_SCENE, defaults={"res": 16})
+    first = erpt.render(s, "path", spp=1, seed=1)
+    second = erpt.render(s, "path", spp=1, seed=1)
+    assert first.stats["build_seconds"] > 0
+    assert second.stats["build_seconds"] == 0
+    assert np.array_equal(first.image, second.image)
+    timed = erpt.render(s, "path", time=0.05, seed=2)
+    assert timed.stats["build_seconds"] == 0 and timed.stats["spp"] >= 1
