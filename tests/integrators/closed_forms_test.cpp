@@ -247,7 +247,7 @@ TEST(StatisticalClosedFormPrecision, SphereLightOverPlaneWithinAPermille) {
     s.spp = 512;
     const test::ClosedFormResult r = test::compareWithClosedForm(scene, s, exact, 16, 48000, kBlock);
     std::printf("%s: ratio %.5f +- %.5f\n", integrator, r.ratio, r.ratioError);
-    EXPECT_LT(r.ratioError, 0.0003) << integrator;  // the bound below is five of these
+    EXPECT_LT(r.ratioError, 0.0004) << integrator;  // the bound below is then at least 3.75 of these (measured 0.0002)
     EXPECT_NEAR(r.ratio, 1.0, 0.0015) << integrator;
   }
 }
