@@ -39,6 +39,9 @@ void writeImageAtomic(const std::string& path, const RgbImage& image);
 void setExrWriteThreads(int threads);
 // Tone-mapped display image: clamp to [0,1], sRGB transfer curve, 8 bits.
 void writePngAtomic(const std::string& path, const RgbImage& image);
+// The 8-bit sRGB pixels writePngAtomic writes (clamped to [0, 1], non-finite values black), RGB
+// row-major from the top.
+std::vector<uint8_t> toneMapped8(const RgbImage& image);
 
 // 8-bit RGB pixels as they are (charts, heat maps), rows top to bottom.
 void writeRgb8Atomic(const std::string& path, int width, int height, const uint8_t* rgb);

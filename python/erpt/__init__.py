@@ -26,7 +26,7 @@ __version__ = _build_info.version
 
 try:
     from ._erpt import (Error, OptionTypeError, OptionValueError, Result, Scene, SceneWarning, diff, integrators,
-                        load_scene, read_image, render)
+                        load_scene, read_image, render, tonemap)
 except ImportError as _error:
     if _sys.version_info[:2] != _build_info.python:
         raise ImportError(
@@ -36,7 +36,7 @@ except ImportError as _error:
     raise
 
 __all__ = ["Error", "OptionTypeError", "OptionValueError", "Result", "Scene", "SceneWarning", "compare", "diff",
-           "integrators", "load_scene", "read_image", "render"]
+           "integrators", "load_scene", "read_image", "render", "tonemap"]
 
 
 def compare(scene, reference, integrators=("path", "erpt"), time=10.0, **options):

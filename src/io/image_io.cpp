@@ -129,7 +129,7 @@ void writeRgb8Atomic(const std::string& path, int width, int height, const uint8
   });
 }
 
-void writePngAtomic(const std::string& path, const RgbImage& image) {
+std::vector<uint8_t> toneMapped8(const RgbImage& image) {
   std::vector<uint8_t> bytes(image.pixels.size() * 3);
   for (size_t i = 0; i < image.pixels.size(); ++i)
     for (int c = 0; c < 3; ++c) {
@@ -138,7 +138,11 @@ void writePngAtomic(const std::string& path, const RgbImage& image) {
       v = v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
       bytes[i * 3 + c] = uint8_t(std::lround(v * 255.0f));
     }
-  writeRgb8Atomic(path, image.width, image.height, bytes.data());
+  return bytes;
+}
+
+void writePngAtomic(const std::string& path, const RgbImage& image) {
+  writeRgb8Atomic(path, image.width, image.height, toneMapped8(image).data());
 }
 
 }  // namespace erpt

@@ -20,6 +20,8 @@
 #include <stdexcept>
 #include <exception>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <mutex>
 #include <thread>
 
@@ -321,6 +323,29 @@ PyResult renderScene(const PyScene& scene, const py::object& integrator, const p
   return result;
 }
 
+// The CLI's PNG tone mapping, as a uint8 array (height, width, 3).
+py::array_t<uint8_t> toneMap(const RgbImage& image) {
+  const std::vector<uint8_t> bytes = toneMapped8(image);
+  py::array_t<uint8_t> out({py::ssize_t(image.height), py::ssize_t(image.width), py::ssize_t(3)});
+  std::copy(bytes.begin(), bytes.end(), out.mutable_data());
+  return out;
+}
+
+// The image as the CLI's PNG, for notebooks (Result._repr_png_): written to a temporary file
+// by the same writer and read back.
+py::bytes pngOf(const PyResult& r) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path();
+  const fs::path file = dir / ("erpt-repr-" + std::to_string(reinterpret_cast<uintptr_t>(&r)) + "-" +
+                               std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + ".png");
+  writePngAtomic(file.string(), r.image);
+  std::ifstream in(file, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::error_code ec;
+  fs::remove(file, ec);
+  return py::bytes(bytes);
+}
+
 void writeResult(const PyResult& r, const py::object& where) {
   const std::string path = pathOf(where);
   const std::filesystem::path folder = std::filesystem::path(path).parent_path();
@@ -427,6 +452,7 @@ PYBIND11_MODULE(_erpt, m) {
       .def_readonly("stats", &PyResult::stats, "The render's statistics (what the CLI summarises), as numbers")
       .def_readonly("curve", &PyResult::curve,
                     "With render(..., reference=...): {seconds, mse, rel_mse} after every pass of a time-budgeted render")
+      .def("_repr_png_", &pngOf, "The image as the CLI's tone-mapped PNG (Jupyter shows a Result by it)")
       .def("write", &writeResult, py::arg("path"),
            "Writes the image as the CLI does: .exr (linear, with a tone-mapped .png beside it), .png (tone-mapped), or "
            "any format OpenImageIO writes");
@@ -465,6 +491,9 @@ PYBIND11_MODULE(_erpt, m) {
         "Error metrics of an image against a reference (arrays or paths; a reference an integer multiple of the "
         "image's size is box-downsampled): mse, rel_mse, mean, reference_mean, mean_ratio, nonfinite_pixels, "
         "black_pixels");
+  m.def("tonemap", [](const py::object& image) { return toneMap(toImage(image)); }, py::arg("image"),
+        "The CLI's PNG tone mapping of a linear image (array or path): clamped to [0, 1], sRGB-encoded, as a uint8 "
+        "array (height, width, 3)");
   m.def("read_image", [](const py::object& path) { return toArray(readImage(pathOf(path))); }, py::arg("path"),
         "Reads an image (EXR, PNG, any format OpenImageIO reads) as a linear float32 array (height, width, 3)");
   m.def("integrators", [] {

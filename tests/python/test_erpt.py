@@ -328,3 +328,16 @@ def test_the_embree_scene_is_built_once_per_scene():
     assert np.array_equal(first.image, second.image)
     timed = erpt.render(s, "path", time=0.05, seed=2)
     assert timed.stats["build_seconds"] == 0 and timed.stats["spp"] >= 1
+
+
+# Notebooks: a Result shows as the CLI's PNG, and erpt.tonemap is that PNG's tone mapping.
+def test_tonemap_and_the_png_a_notebook_shows(scene, tmp_path):
+    r = erpt.render(scene, "path", spp=2, width=12, height=10, seed=4)
+    png = r._repr_png_()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    r.write(tmp_path / "cli.png")
+    assert png == (tmp_path / "cli.png").read_bytes()
+    mapped = erpt.tonemap(r.image)
+    assert mapped.dtype == np.uint8 and mapped.shape == (10, 12, 3)
+    linear = np.array([[[0.0, 0.0031308, 0.5]], [[1.0, 4.0, np.nan]]], dtype=np.float32)
+    assert erpt.tonemap(linear).tolist() == [[[0, 10, 188]], [[255, 255, 0]]]
