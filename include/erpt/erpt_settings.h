@@ -47,6 +47,9 @@ struct ErptSettings {
   // Noise filters of section 4.4 (biased; off by default).
   int pmFilterRadius = -1;      // >= 0: proposed-mutations filter, box of (2r+1)^2 pixels; -1: off
   int maxConsecutive = 0;       // >= 1: consecutive-sample filter, N deposits in a row on a pixel; 0: off
+  // --chain-maps: the render also returns the chains' proposals per pixel ("mutations") and
+  // their mean acceptance probability ("acceptance"), by the proposals' film positions.
+  bool chainMaps = false;
   // At most this many chains start from one seed; a seed that would start more (a tiny e_ave
   // makes e / (m e_d) explode) starts this many, each step depositing e / (m cap) instead of e_d.
   int maxChainsPerSeed = 4096;

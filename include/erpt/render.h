@@ -41,7 +41,9 @@ struct RenderSettings {
   FilterKind filter = FilterKind::Box;
   // The path tracer's film (film_splat.h): Auto picks per filter. ERPT and PMC-ER use Fis.
   FilmMode film = FilmMode::Auto;
-  std::function<void(double fraction)> progress;  // called from the rendering thread
+  // Called with the fraction done as the render goes (chains too), from one rendering thread
+  // at a time.
+  std::function<void(double fraction)> progress;
   SeedStore* seeds = nullptr;  // path tracer: when set, every contribution is recorded as a seed
   // Path tracer with `seeds` set: called after every batch with that batch's seeds, which are
   // then cleared (streaming, so memory stays bounded). Unset: the store keeps all seeds.
@@ -94,6 +96,13 @@ struct RenderStats {
   // Stopped early (RenderSettings::stop): `spp` samples per pixel of the requested ones were
   // rendered and the image is normalised by them.
   bool partial = false;
+  // A chain integrator (erpt, pmc-er, mlt) stopped before its first group of passes completed
+  // keeps that group's work (docs/long-renders.md, "Stopping"): every chain left deposits its
+  // remaining energy where it stands, so the image holds the energy of every seed taken. This is then
+  // the samples per pixel that image stands for, on average over the pixels (mlt, whose
+  // deposits always add up to its whole image: the share of its steps run times the spp),
+  // more than `spp`; 0 when the image is of complete passes only.
+  double keptSpp = 0;
   // Images the integrator makes besides the result, by name (ERPT's proposed-mutations filter:
   // "raw", the unfiltered image, and "proposals", the tally); the CLI writes OUT-name.exr.
   std::vector<std::pair<std::string, RgbImage>> extraImages;
@@ -116,5 +125,10 @@ RenderSettings resolveSettings(const Scene& scene, RenderSettings settings);
 std::shared_ptr<const Tracer> buildTracer(const Scene& scene, int threads);
 
 RgbImage render(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
+
+// What a stopped render's image holds, for its metadata and messages ("12 of 32 samples per
+// pixel", with a time budget "79 samples per pixel in 7 passes of a 10 s budget"), from the
+// resolved settings and the render's stats.
+std::string partialRenderNote(const RenderSettings& resolved, const RenderStats& stats);
 
 }  // namespace erpt

@@ -214,14 +214,12 @@ int runRender(const RenderArgs& given) {
   const std::string resumeCommand = (ranks > 1 ? "mpirun -n " + std::to_string(ranks) + " " : std::string()) +
                                     "erpt resume " + given.checkpoint;
   if (!group.leader()) return stats.partial ? stop.exitStatus() : 0;  // rank 0 writes the image
-  if (stats.partial && stats.spp == 0) {
+  if (stats.partial && stats.spp == 0 && !(stats.keptSpp > 0)) {
     std::fprintf(stderr, "%s: stopped before the first sample pass completed: no image written%s\n", s.integrator.c_str(),
                  a.checkpoint.empty() ? "" : ("; continue with: " + resumeCommand).c_str());
     return stop.exitStatus();
   }
-  const std::string partialNote =
-      std::to_string(stats.spp) + " of " + std::to_string(r.spp) + " samples per pixel (stopped by signal " +
-      std::to_string(stop.signal()) + ")";
+  const std::string partialNote = partialRenderNote(r, stats) + " (stopped by signal " + std::to_string(stop.signal()) + ")";
   if (stats.partial) image.metadata.emplace_back("erpt:partial", partialNote);
 
   fs::path png = out;
@@ -232,7 +230,7 @@ int runRender(const RenderArgs& given) {
     p.replace_filename(out.stem().string() + "-" + name + ".exr");
     writeImageAtomic(p.string(), extra);
     // Counts and per-pixel statistics: EXR only.
-    if (name != "proposals" && name != "strategy") writePngAtomic(fs::path(p).replace_extension(".png").string(), extra);
+    if (name != "proposals" && name != "strategy" && name != "mutations") writePngAtomic(fs::path(p).replace_extension(".png").string(), extra);
   }
   writeImagePair(out.string(), image, a.threads);
   std::fprintf(stderr, "%s: %dx%d, %d spp%s, %llu samples in %.2f s, %.2f Mrays/s, %llu invalid samples dropped -> %s, %s\n",

@@ -30,14 +30,12 @@ ChainLanes::ChainLanes(const Tracer& tracer, const Config& config, Film& film, E
       times_(times),
       exact_(film.width(), film.height(), exactFilmUnit(config.depositEnergy), config.lanes > 1) {
   filters_.maxConsecutive = uint32_t(settings().maxConsecutive);
-  if (settings().pmFilterRadius >= 0) {
-    tally_.assign(size_t(film.width()) * size_t(film.height()), 0);
-    filters_.proposalTally = &tally_;
-  }
+  tallies_.allocate(size_t(film.width()) * size_t(film.height()), settings().pmFilterRadius >= 0, settings().chainMaps);
+  tallies_.attach(filters_);
   for (int l = 0; l < std::max(1, config.lanes); ++l) {
     lanes_.push_back(std::make_unique<ChainLane>(config.laneSlots));
     lanes_.back()->filters.maxConsecutive = filters_.maxConsecutive;
-    lanes_.back()->filters.proposalTally = filters_.proposalTally;
+    tallies_.attach(lanes_.back()->filters);
   }
 }
 
@@ -131,6 +129,7 @@ bool ChainLanes::runLanes(bool drain) {
       if (!runLane(*lanes_[l], drain)) stop = true;
   });
   mergeLanes();
+  if (stop) depositUnfinished();
   // The large deposits wait for the end of the group of passes: when they are added to the
   // film they then do not depend on how far each lane had got when a batch's consume returned.
   if (drain && !stop) addLargeDeposits(large_, config_.step.measure.film, film_);
@@ -148,8 +147,43 @@ bool ChainLanes::runLane(ChainLane& lane, bool drain) {
       return true;  // the batch's chains are all in a queue: the next batch (or finish) runs them
     }
     if (stopped()) return false;
+    uint64_t active = 0;
+    for (size_t i = 0; i < lane.q.chains.size(); ++i) active += lane.q.chains.stepsLeft[i] > 0;
     step(lane);
+    countSteps(active);
   }
+}
+
+void ChainLanes::countSteps(uint64_t steps) {
+  const uint64_t total = steps_.fetch_add(steps, std::memory_order_relaxed) + steps;
+  if (!config_.onSteps) return;
+  std::unique_lock<std::mutex> lock(progressMutex_, std::try_to_lock);  // a lane already reporting: skip
+  if (lock.owns_lock()) config_.onSteps(total);
+}
+
+void ChainLanes::depositUnfinished() {
+  const FilmDensity& density = config_.step.measure.film;
+  for (auto& lane : lanes_) {
+    ChainQueue& q = lane->q.chains;
+    for (size_t slot = 0; slot < q.size(); ++slot) {
+      if (q.stepsLeft[slot] == 0) continue;
+      const Color d = q.colorAt(slot) * float(double(q.energy[slot]) * q.stepsLeft[slot]);
+      density.splat(q.filmX[slot], q.filmY[slot], [&](uint32_t pixel, float w) { film_.add(pixel, d * w); });
+      deposited_ += luminance(d);
+      q.stepsLeft[slot] = 0;
+    }
+  }
+  if (batch_) {
+    const size_t m = size_t(settings().chainLength);
+    for (const PendingSeed& p : pending_) {
+      const size_t from = std::max(p.firstChain, std::min(nextChain_.load(), batchChains_));
+      if (from >= p.firstChain + p.copies) continue;
+      const double energy = double(p.energyPerStep) * double(m) * double(p.firstChain + p.copies - from);
+      deposited_ += depositSeedInPlace(config_.step.measure.film, *batch_, p.seed, energy, film_);
+    }
+    nextChain_ = batchChains_;
+  }
+  addLargeDeposits(large_, density, film_);
 }
 
 bool ChainLanes::stopped() const { return config_.stop && config_.stop->load(std::memory_order_relaxed); }
@@ -160,7 +194,7 @@ void ChainLanes::save(ByteWriter& w) const {
   w.put(deposited_), w.put(inPlaceDeposited_);
   counters_.save(w);
   w.put(filters_.discarded), w.put(filters_.discardedEnergy);
-  w.putVector(tally_);
+  tallies_.save(w);
   exact_.save(w);
 }
 
@@ -170,7 +204,7 @@ void ChainLanes::load(ByteReader& r) {
   r.get(deposited_), r.get(inPlaceDeposited_);
   counters_.load(r);
   r.get(filters_.discarded), r.get(filters_.discardedEnergy);
-  r.getVector(tally_, tally_.size());
+  tallies_.load(r);
   exact_.load(r);
   large_.clear();
   for (auto& lane : lanes_) std::fill(lane->q.chains.stepsLeft.begin(), lane->q.chains.stepsLeft.end(), 0u);

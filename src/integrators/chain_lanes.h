@@ -14,6 +14,8 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
+#include <mutex>
 #include <memory>
 #include <vector>
 
@@ -41,9 +43,14 @@ class ChainLanes {
     uint64_t seed = 0;         // the render's seed (chain and seed random streams)
     size_t laneSlots = kErptLaneSlots;  // chain slots of each lane
     double depositEnergy = 0;            // e_d (equal deposition)
-    // When it turns true, consume() and finish() return false between steps (the render then
-    // falls back to its last saved state: the chains left are dropped, never half-deposited).
+    // When it turns true, consume() and finish() return false between steps, after every chain
+    // left has deposited its remaining energy where it stands (depositUnfinished): the film
+    // then holds the energy of every seed taken. (A render that rolls back to its last saved
+    // state drops it with the rest of the film.)
     const std::atomic<bool>* stop = nullptr;
+    // Called as the chains run with the chain steps taken so far by this machine, from one
+    // lane's thread at a time.
+    std::function<void(uint64_t steps)> onSteps = {};
     int lanes = 1;  // chain queues stepped at once (a render: its thread count)
     // The integrator's choices in every step (null: ERPT's; MLT's large steps, PMC-ER's mixture).
     const ProposalPolicy* policy = nullptr;
@@ -78,14 +85,17 @@ class ChainLanes {
   template <class Sum>
   void reduce(const Sum& sum) {
     exact_.reduce(sum);
-    erpt::reduceTally(tally_, sum);
+    tallies_.reduce(sum);
   }
+  // Chain steps taken so far (mutations, all lanes).
+  uint64_t stepsTaken() const { return steps_.load(std::memory_order_relaxed); }
   // Energy added to the film so far (luminance), for tests.
   double depositedEnergy() const { return deposited_; }
   // The part of it deposited by seeds in place (InPlaceReason).
   double inPlaceEnergy() const { return inPlaceDeposited_; }
-  // Complete proposals per pixel (when Config::tallyProposals).
-  const std::vector<uint32_t>& proposalTally() const { return tally_; }
+  // Complete proposals per pixel (with the proposed-mutations filter or the chain maps).
+  const std::vector<uint32_t>& proposalTally() const { return tallies_.proposals; }
+  const ProposalTallies& tallies() const { return tallies_; }
 
  private:
   const ChainSettings& settings() const { return config_.chains; }
@@ -105,6 +115,11 @@ class ChainLanes {
   // Deposits `energy` (luminance) in the seed's colour at its film position, counted by `why`.
   void depositInPlace(const SeedStore& store, size_t seed, double energy, InPlaceReason why);
   bool stopped() const;
+  // A stop: every chain in a queue deposits the energy of its steps left at its current path
+  // (as if it were rejected from then on), and every chain of the batch still waiting for a
+  // slot deposits all of its energy at its seed, into the film, in slot and chain order.
+  void depositUnfinished();
+  void countSteps(uint64_t steps);
 
   const Tracer& tracer_;
   Config config_;
@@ -128,8 +143,10 @@ class ChainLanes {
   size_t batchChains_ = 0;
   uint64_t chainBase_ = 0;
   uint64_t seedCounter_ = 0, chainCounter_ = 0;
+  std::atomic<uint64_t> steps_{0};
+  std::mutex progressMutex_;
   double deposited_ = 0, inPlaceDeposited_ = 0;
-  std::vector<uint32_t> tally_;
+  ProposalTallies tallies_;
   DepositFilters filters_;
   std::vector<LargeDeposit> large_;
 };

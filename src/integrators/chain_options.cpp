@@ -55,6 +55,16 @@ OptionSpec bidirectionalMutationOption() {
                     0, 1, [](auto& s) -> auto& { return erptOf(s).bidirectionalMutation; });
 }
 
+OptionSpec chainMapsOption() {
+  OptionSpec maps("chain-maps",
+                  "also writes OUT-mutations.exr (the chains' proposals per pixel, by their film positions) and "
+                  "OUT-acceptance.exr (their mean acceptance probability)",
+                  OptionKind::Flag);
+  maps.set = [](RenderSettings& s, const std::string&) { erptOf(s).chainMaps = true; };
+  maps.get = [](const RenderSettings& s) { return erptOf(s).chainMaps ? "true" : "false"; };
+  return maps;
+}
+
 std::vector<OptionSpec> depositOptions() {
   OptionSpec pmFilter("pm-filter",
                       "proposed-mutations noise filter (ERPT paper 4.4; biased) of radius 3 unless "

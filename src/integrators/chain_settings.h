@@ -12,10 +12,11 @@ struct ChainSettings {
   int directSamples = ErptSettings{}.directSamples;        // > 0: one-bounce seeds are the direct pass's
   int maxConsecutive = ErptSettings{}.maxConsecutive;      // consecutive-sample filter (0: off)
   int pmFilterRadius = ErptSettings{}.pmFilterRadius;      // proposed-mutations filter (-1: off)
+  bool chainMaps = ErptSettings{}.chainMaps;               // tally the mutations and acceptance maps
 };
 
 inline ChainSettings chainSettingsOf(const ErptSettings& s) {
-  return ChainSettings{s.chainLength, s.maxChainsPerSeed, s.directSamples, s.maxConsecutive, s.pmFilterRadius};
+  return ChainSettings{s.chainLength, s.maxChainsPerSeed, s.directSamples, s.maxConsecutive, s.pmFilterRadius, s.chainMaps};
 }
 
 }  // namespace erpt

@@ -65,6 +65,19 @@ RgbImage redistributionImage(const RenderSettings& s, RgbImage image, const RgbI
   return filtered;
 }
 
+void addChainMaps(const ProposalTallies& tallies, int width, int height,
+                  std::vector<std::pair<std::string, RgbImage>>& extras) {
+  if (tallies.acceptance.empty()) return;
+  RgbImage mutations{width, height, {}, {}}, acceptance{width, height, {}, {}};
+  for (size_t i = 0; i < tallies.proposals.size(); ++i) {
+    const double n = tallies.proposals[i];
+    mutations.pixels.push_back(Color(float(n)));
+    acceptance.pixels.push_back(Color(n > 0 ? float(double(tallies.acceptance[i]) * kAcceptanceUnit / n) : 0.0f));
+  }
+  extras.emplace_back("mutations", std::move(mutations));
+  extras.emplace_back("acceptance", std::move(acceptance));
+}
+
 void scaleDirectSamples(const RenderSettings& whole, RenderSettings& pass) {
   if (erptOf(whole).directSamples > 0)
     erptOf(pass).directSamples = std::max(1, int(std::lround(double(erptOf(whole).directSamples) * pass.spp / whole.spp)));

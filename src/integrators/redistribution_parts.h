@@ -10,6 +10,7 @@
 
 #include "erpt/erpt_settings.h"
 #include "erpt/render.h"
+#include "stages/chain_stages.h"
 
 namespace erpt {
 
@@ -27,5 +28,10 @@ RgbImage renderDirectPass(const Scene& scene, const RenderSettings& settings, Re
 RgbImage redistributionImage(const RenderSettings& settings, RgbImage chains, const RgbImage& direct,
                              const std::vector<uint32_t>* tally,
                              std::vector<std::pair<std::string, RgbImage>>* extras);
+
+// --chain-maps: appends "mutations" (proposals per pixel) and "acceptance" (their mean
+// acceptance probability; 0 where none went) to `extras`, when the tallies hold them.
+void addChainMaps(const ProposalTallies& tallies, int width, int height,
+                  std::vector<std::pair<std::string, RgbImage>>& extras);
 
 }  // namespace erpt

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "core/parallel.h"
 #include "erpt/erpt_settings.h"
@@ -46,6 +47,11 @@ struct WeightedSum {
   }
 };
 
+// Extra images that count per pixel (a time-budgeted render adds them over its passes; the
+// others are images, averaged by the passes' samples per pixel, as the acceptance map, which
+// is then a mean over the passes rather than over all proposals).
+bool isCountImage(const std::string& name) { return name == "proposals" || name == "mutations"; }
+
 RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats& stats, Clock::time_point start) {
   const IntegratorModule& module = integratorNamed(s.integrator);
   RenderSettings pass = subRenderSettings(s);
@@ -53,16 +59,17 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
   WeightedSum image;
   std::vector<WeightedSum> extras;
   double notRendering = 0;  // time spent in onPass
+  double totalWeight = 0;   // the passes' samples per pixel (kept work counted as RenderStats::keptSpp)
   // The image of all passes so far. The proposed-mutations filter is not linear: it is applied
   // once, to the sum of the passes' chain images and tallies.
   auto resultSoFar = [&]() {
-    if (!module.proposalFiltered || erptOf(s).pmFilterRadius < 0) return image.mean(stats.spp);
+    if (!module.proposalFiltered || erptOf(s).pmFilterRadius < 0) return image.mean(totalWeight);
     RgbImage raw, chains, proposals;
     for (size_t k = 0; k < extras.size(); ++k) {
       const std::string& name = stats.extraImages[k].first;
-      if (name == "raw") raw = extras[k].mean(stats.spp);
-      if (name == "chains") chains = extras[k].mean(stats.spp);
-      if (name == "proposals") proposals = extras[k].mean(1.0);
+      if (name == "raw") raw = extras[k].mean(totalWeight);
+      if (name == "chains") chains = extras[k].mean(totalWeight);
+      if (name == "proposals") proposals = extras[k].mean(1.0);  // a count
     }
     return proposalFilteredImage(raw, chains, proposals, erptOf(s).pmFilterRadius);
   };
@@ -75,16 +82,21 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
     RenderStats ps;
     const RgbImage img = renderPass(scene, pass, ps);
     const double passSeconds = secondsSince(passStart);
-    // A stopped pass counts with the sample passes it completed (sample_passes.h).
+    // A stopped pass counts with the sample passes it completed (sample_passes.h), or with
+    // the samples per pixel its kept work stands for (RenderStats::keptSpp).
+    double weight = passSpp;
     if (ps.partial) {
       stats.partial = true;
       passSpp = ps.spp;
-      if (passSpp == 0) break;
+      weight = ps.keptSpp > 0 ? ps.keptSpp : double(ps.spp);
+      if (!(weight > 0)) break;
+      if (ps.keptSpp > 0) stats.keptSpp = totalWeight + weight;
     }
-    image.add(img, passSpp);
+    totalWeight += weight;
+    image.add(img, weight);
     extras.resize(ps.extraImages.size());
     for (size_t k = 0; k < ps.extraImages.size(); ++k)  // counts add up, images average
-      extras[k].add(ps.extraImages[k].second, ps.extraImages[k].first == "proposals" ? 1.0 : passSpp);
+      extras[k].add(ps.extraImages[k].second, isCountImage(ps.extraImages[k].first) ? 1.0 : weight);
     if (p == 0)
       for (const auto& [name, extra] : ps.extraImages) stats.extraImages.emplace_back(name, RgbImage{});
     stats.samples += ps.samples;
@@ -108,7 +120,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
     if (!(fits >= 1)) break;
     passSpp = int(std::min({2.0 * passSpp, std::floor(fits), double(1 << 24)}));
   }
-  if (stats.spp == 0) {  // stopped in the first pass
+  if (!(totalWeight > 0)) {  // stopped in the first pass, keeping nothing
     RgbImage none;
     none.width = s.width, none.height = s.height;
     none.pixels.assign(size_t(s.width) * size_t(s.height), Color(0.0f));
@@ -116,7 +128,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
     return none;
   }
   for (size_t k = 0; k < extras.size(); ++k)
-    stats.extraImages[k].second = extras[k].mean(stats.extraImages[k].first == "proposals" ? 1.0 : stats.spp);
+    stats.extraImages[k].second = extras[k].mean(isCountImage(stats.extraImages[k].first) ? 1.0 : totalWeight);
   return resultSoFar();
 }
 
@@ -166,6 +178,21 @@ RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats
   stats.refusedRays = s.tracer->refusedRays() - refusedBefore;
   stats.seconds = secondsSince(start);
   return image;
+}
+
+std::string partialRenderNote(const RenderSettings& r, const RenderStats& stats) {
+  char text[320];
+  const char* kept = stats.keptSpp > 0 ? ", each chain stopped part-way leaving its remaining energy where it stood" : "";
+  if (r.timeBudget > 0)
+    std::snprintf(text, sizeof text, "%.*f samples per pixel in %d passes, stopped %.1f s into a %g s budget%s",
+                  stats.keptSpp > 0 ? 2 : 0, stats.keptSpp > 0 ? stats.keptSpp : double(stats.spp), stats.passes,
+                  stats.seconds, r.timeBudget, kept);
+  else if (stats.keptSpp > 0)
+    std::snprintf(text, sizeof text, "%.1f%% of the render's work (%d of %d sample passes complete, then the seeds the chains "
+                  "had taken)%s", 100.0 * stats.keptSpp / std::max(1, r.spp), stats.spp, r.spp, kept);
+  else
+    std::snprintf(text, sizeof text, "%d of %d samples per pixel", stats.spp, r.spp);
+  return text;
 }
 
 }  // namespace erpt

@@ -79,6 +79,13 @@ RgbImage renderInSamplePasses(const RenderSettings& s, size_t pixels, RenderStat
       if (s.progress) s.progress((double(first) + f * double(end - first)) / double(total));
     };
     if (!hooks.run(first, end, progress)) {
+      // Before any group completed, the chain integrators keep the stopped group's work rather
+      // than return nothing; after one, the roll-back gives an unbiased image of its passes.
+      if (hooks.stoppedImage && done == 0 && !s.share.split()) {
+        stats.partial = true;
+        stats.spp = done;
+        return hooks.stoppedImage(done, end, stats);
+      }
       ByteReader r(state.bytes);
       r.getString(64);  // the integrator's name
       hooks.load(r);

@@ -28,6 +28,12 @@ struct SamplePassHooks {
   std::function<bool(int first, int end, const std::function<void(double)>& progress)> run;
   // The image of the state after `passes` passes.
   std::function<RgbImage(int passes)> image;
+  // When set, a stop inside the first group keeps its work instead of returning nothing (the
+  // chain integrators, RenderStats::keptSpp): the image of the state after `done` complete
+  // passes (0, or those of a checkpoint) and the stopped group [done, end). Sets
+  // stats.keptSpp. A stop after a completed group rolls back to it (an unbiased image of its
+  // passes), and split renders always roll back (their ranks stop at different points).
+  std::function<RgbImage(int done, int end, RenderStats& stats)> stoppedImage;
   // Split renders (RenderShare): adds the accumulators (film sums, counts) over the ranks.
   std::function<void(const RenderShare&)> reduce;
 };

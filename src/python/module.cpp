@@ -80,6 +80,15 @@ struct PyResult {
   RgbImage image;
   py::dict stats;
   py::list curve;  // with a reference: {seconds, mse, rel_mse} after every pass
+  std::vector<std::pair<std::string, RgbImage>> images;  // RenderStats::extraImages
+};
+
+// An image the render made on the way (after a group of sample passes, or a time-budgeted
+// render's pass), waiting for the calling thread to hand it to `on_pass`.
+struct PassImage {
+  RgbImage image;
+  int spp;
+  double seconds;
 };
 
 py::array_t<float> toArray(const RgbImage& image) {
@@ -203,6 +212,7 @@ py::dict statsOf(const RenderSettings& s, const RenderStats& stats) {
   d["invalid_samples"] = stats.invalidSamples;
   d["refused_rays"] = stats.refusedRays;
   d["partial"] = stats.partial;
+  d["kept_spp"] = stats.keptSpp;
   py::dict stages;
   for (const auto& [name, seconds] : stats.stages.all()) stages[py::str(name)] = seconds;
   d["stage_seconds"] = stages;
@@ -225,7 +235,7 @@ py::dict statsOf(const RenderSettings& s, const RenderStats& stats) {
 // Renders on a worker thread; the caller waits without the GIL and handles progress and
 // signals between waits.
 PyResult renderScene(const PyScene& scene, const py::object& integrator, const py::object& progress,
-                     const py::object& reference, const py::kwargs& options) {
+                     const py::object& reference, const py::object& onPass, const py::kwargs& options) {
   // No integrator: the scene's, if it is one of ours, else the default (as the CLI chooses).
   const RenderRequest request = requestOf(integrator.is_none() ? std::string() : integrator.cast<std::string>(), options);
   RenderSettings s = settingsFor(*scene.scene, request);
@@ -240,6 +250,32 @@ PyResult renderScene(const PyScene& scene, const py::object& integrator, const p
       const ImageComparison c = compareImages(image, referenceImage);
       curve.push_back({seconds, c.mse, c.relMse});
     };
+  }
+  // on_pass: the images the worker made, delivered by the calling thread in order.
+  std::mutex passMutex;
+  std::vector<PassImage> passImages;
+  const auto renderStart = std::chrono::steady_clock::now();
+  if (!onPass.is_none()) {
+    if (!PyCallable_Check(onPass.ptr())) throw UsageError("on_pass must be callable as on_pass(image, spp, seconds)");
+    if (s.timeBudget > 0) {
+      s.onPass = [&, curveHook = s.onPass](const RgbImage& image, double seconds, int spp) {
+        if (curveHook) curveHook(image, seconds, spp);
+        std::lock_guard<std::mutex> lock(passMutex);
+        passImages.push_back({image, spp, seconds});
+      };
+    } else if (integratorNamed(s.integrator).samplePasses) {
+      s.onPasses = [&](const RenderState& state, const std::function<RgbImage()>& image) {
+        if (state.passesDone == 0) return;  // the state a render starts from
+        RgbImage now = image();
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - renderStart).count();
+        std::lock_guard<std::mutex> lock(passMutex);
+        passImages.push_back({std::move(now), state.passesDone, seconds});
+      };
+    } else {
+      throw UsageError(s.integrator + " renders in one pass (no images on the way): on_pass needs a time budget "
+                       "(time=...) with it");
+    }
   }
   std::atomic<bool> stop{false};
   std::atomic<double> fraction{-1.0};
@@ -274,6 +310,38 @@ PyResult renderScene(const PyScene& scene, const py::object& integrator, const p
   bool interrupted = false;
   double reported = -1;
   std::exception_ptr callbackFailure;
+  // A callback's exception stops the render and is raised; a KeyboardInterrupt that arrives
+  // while a callback runs is Ctrl-C, which returns what is done.
+  auto callbackFailed = [&] {
+    stop = true;
+    try {
+      throw;
+    } catch (py::error_already_set& e) {
+      if (e.matches(PyExc_KeyboardInterrupt)) {
+        interrupted = true;
+        return;
+      }
+      callbackFailure = std::current_exception();
+    } catch (...) {
+      callbackFailure = std::current_exception();
+    }
+  };
+  // Hands the images made so far to on_pass (a failure in it stops the render, as in progress).
+  auto deliverPasses = [&] {
+    std::vector<PassImage> ready;
+    {
+      std::lock_guard<std::mutex> lock(passMutex);
+      ready.swap(passImages);
+    }
+    for (const PassImage& p : ready) {
+      if (callbackFailure || interrupted) break;
+      try {
+        onPass(toArray(p.image), p.spp, p.seconds);
+      } catch (...) {
+        callbackFailed();
+      }
+    }
+  };
   for (;;) {
     {
       py::gil_scoped_release release;
@@ -281,6 +349,7 @@ PyResult renderScene(const PyScene& scene, const py::object& integrator, const p
       cv.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; });
       if (done) break;
     }
+    deliverPasses();
     if (PyErr_CheckSignals() != 0) {  // KeyboardInterrupt (or another signal handler raised)
       PyErr_Clear();
       interrupted = true;
@@ -292,24 +361,27 @@ PyResult renderScene(const PyScene& scene, const py::object& integrator, const p
       try {
         progress(f);
       } catch (...) {
-        callbackFailure = std::current_exception();
-        stop = true;
+        callbackFailed();
       }
     }
   }
   worker.join();
+  if (!failure) deliverPasses();
   if (failure) std::rethrow_exception(failure);
   if (callbackFailure) std::rethrow_exception(callbackFailure);
-  if (interrupted && stats.spp == 0) {  // stopped before a pass completed: nothing to return
+  if (interrupted && stats.spp == 0 && !(stats.keptSpp > 0)) {  // stopped before anything could be kept
     PyErr_SetNone(PyExc_KeyboardInterrupt);
     throw py::error_already_set();
   }
   const RenderSettings resolved = resolveSettings(*scene.scene, s);
   result.image = std::move(image);
-  if (stats.partial)
-    result.image.metadata.emplace_back("erpt:partial", std::to_string(stats.spp) + " of " + std::to_string(resolved.spp) +
-                                                           " samples per pixel (stopped by an interrupt)");
+  result.images = std::move(stats.extraImages);
   result.stats = statsOf(resolved, stats);
+  if (stats.partial) {
+    const std::string note = partialRenderNote(resolved, stats) + " (stopped by an interrupt)";
+    result.image.metadata.emplace_back("erpt:partial", note);
+    result.stats["partial_note"] = note;
+  }
   // Building the Embree scene, which the scene's first render does and later ones reuse: not
   // part of `seconds` nor of a `time` budget.
   result.stats["build_seconds"] = buildSeconds;
@@ -450,6 +522,15 @@ PYBIND11_MODULE(_erpt, m) {
       .def_property_readonly("image", [](const PyResult& r) { return toArray(r.image); },
                              "The linear image, a float32 array of shape (height, width, 3)")
       .def_readonly("stats", &PyResult::stats, "The render's statistics (what the CLI summarises), as numbers")
+      .def_property_readonly(
+          "images",
+          [](const PyResult& r) {
+            py::dict d;
+            for (const auto& [name, image] : r.images) d[py::str(name)] = toArray(image);
+            return d;
+          },
+          "The render's other images by name, as the CLI writes them beside OUT.exr (OUT-name.exr): 'raw', 'chains' "
+          "and 'proposals' with pm_filter, 'strategy' for pmc-er, 'mutations' and 'acceptance' with chain_maps")
       .def_readonly("curve", &PyResult::curve,
                     "With render(..., reference=...): {seconds, mse, rel_mse} after every pass of a time-budgeted render")
       .def("_repr_png_", &pngOf, "The image as the CLI's tone-mapped PNG (Jupyter shows a Result by it)")
@@ -481,12 +562,13 @@ PYBIND11_MODULE(_erpt, m) {
       "Loads a Mitsuba 0.6 or 3 XML scene; `defaults` overrides its <default> values as the CLI's -D name=value; "
       "`tessellate_spheres` loads sphere shapes as triangle meshes (the CLI's --tessellate-spheres)");
   m.def("render", &renderScene, py::arg("scene"), py::arg("integrator") = py::none(), py::kw_only(),
-        py::arg("progress") = py::none(), py::arg("reference") = py::none(),
+        py::arg("progress") = py::none(), py::arg("reference") = py::none(), py::arg("on_pass") = py::none(),
         "Renders `scene` with `integrator` (default: the scene's, as the CLI chooses it); every render option of the CLI is a keyword argument (dashes as "
         "underscores: spp, width, height, seed, threads, time, max_depth, filter, mutations_per_pixel, ...). "
         "`progress(fraction)` is called as the render goes; `reference` (an image or path) records the error after "
-        "every pass of a time-budgeted render in Result.curve. Ctrl-C stops the render between passes and returns "
-        "what is done (stats['partial']).");
+        "every pass of a time-budgeted render in Result.curve; `on_pass(image, spp, seconds)` gets the image so far after "
+        "every group of sample passes (with time=..., after every pass). Ctrl-C stops the render and returns what is "
+        "done (stats['partial'], stats['partial_note']; docs/python.md).");
   m.def("diff", &diffImages, py::arg("image"), py::arg("reference"),
         "Error metrics of an image against a reference (arrays or paths; a reference an integer multiple of the "
         "image's size is box-downsampled): mse, rel_mse, mean, reference_mean, mean_ratio, nonfinite_pixels, "

@@ -110,8 +110,13 @@ double depositRecords(ChainQueue& chains, const ProposalQueue& proposals, const 
     if (filters.proposalTally &&
         (proposals.state[i] == kProposalComplete || proposals.mutation[i] == uint8_t(MutationKind::Lens))) {
       const float px = std::floor(proposals.filmX[i]), py = std::floor(proposals.filmY[i]);
-      if (px >= 0 && py >= 0 && px < float(w) && py < float(h))
-        __atomic_fetch_add(&(*filters.proposalTally)[size_t(py) * size_t(w) + size_t(px)], 1u, __ATOMIC_RELAXED);
+      if (px >= 0 && py >= 0 && px < float(w) && py < float(h)) {
+        const size_t pixel = size_t(py) * size_t(w) + size_t(px);
+        __atomic_fetch_add(&(*filters.proposalTally)[pixel], 1u, __ATOMIC_RELAXED);
+        if (filters.acceptanceTally)
+          __atomic_fetch_add(&(*filters.acceptanceTally)[pixel],
+                             uint64_t(std::lround(double(proposals.acceptance[i]) / kAcceptanceUnit)), __ATOMIC_RELAXED);
+      }
     }
   }
   return total;

@@ -16,6 +16,7 @@
 #include "models/exact_film.h"
 #include "models/film.h"
 #include "core/seeds.h"
+#include "core/byte_stream.h"
 #include "models/surface.h"
 #include "tracer/tracer.h"
 
@@ -176,18 +177,54 @@ struct DepositFilters {
   // position falls in (width x height entries); the image is rescaled at the end
   // (noise_filters.h).
   std::vector<uint32_t>* proposalTally = nullptr;
+  // The acceptance map (--chain-maps): with the tally, every counted proposal adds its
+  // acceptance probability q, in units of kAcceptanceUnit, to its pixel.
+  std::vector<uint64_t>* acceptanceTally = nullptr;
   uint64_t discarded = 0;      // deposit records thrown away
   double discardedEnergy = 0;  // their luminance
 };
+constexpr double kAcceptanceUnit = 1.0 / 65536;
 
-// Split renders: a proposal tally becomes its total over the processes (`sum` as Film::reduce's).
-template <class Sum>
-void reduceTally(std::vector<uint32_t>& tally, const Sum& sum) {
-  if (tally.empty()) return;
-  std::vector<double> t(tally.begin(), tally.end());
-  sum(t);
-  for (size_t i = 0; i < t.size(); ++i) tally[i] = uint32_t(t[i]);
-}
+// The per-pixel counts of a chain machine's proposals (DepositFilters): how many went to each
+// pixel (the proposed-mutations filter's tally and the mutations map) and the sum of their
+// acceptance probabilities (the acceptance map). Integers, so the sums do not depend on the
+// order of the adds. Empty when not asked for.
+struct ProposalTallies {
+  std::vector<uint32_t> proposals;
+  std::vector<uint64_t> acceptance;
+
+  void allocate(size_t pixels, bool counts, bool acceptanceToo) {
+    proposals.assign(counts || acceptanceToo ? pixels : 0, 0);
+    acceptance.assign(acceptanceToo ? pixels : 0, 0);
+  }
+  void attach(DepositFilters& f) {
+    f.proposalTally = proposals.empty() ? nullptr : &proposals;
+    f.acceptanceTally = acceptance.empty() ? nullptr : &acceptance;
+  }
+  void save(ByteWriter& w) const {
+    w.putVector(proposals);
+    w.putVector(acceptance);
+  }
+  void load(ByteReader& r) {
+    r.getVector(proposals, proposals.size());
+    r.getVector(acceptance, acceptance.size());
+  }
+  // Split renders: the totals over the processes (`sum` as Film::reduce's; exact below 2^53).
+  template <class Sum>
+  void reduce(const Sum& sum) {
+    reduceCounts(proposals, sum);
+    reduceCounts(acceptance, sum);
+  }
+
+ private:
+  template <class T, class Sum>
+  static void reduceCounts(std::vector<T>& counts, const Sum& sum) {
+    if (counts.empty()) return;
+    std::vector<double> t(counts.begin(), counts.end());
+    sum(t);
+    for (size_t i = 0; i < t.size(); ++i) counts[i] = T(t[i]);
+  }
+};
 
 // Where the deposit stage of one of ERPT's chain lanes splats its records while other lanes
 // do the same: an ExactFilm (sums independent of the order of the adds), and, for the rare

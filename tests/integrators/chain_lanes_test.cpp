@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <random>
 #include <vector>
 
@@ -182,6 +183,75 @@ TEST(ErptLanes, LargeDepositsAreAddedInChainOrder) {
   EXPECT_EQ(sums(a), sums(b));
   // The shuffled order summed as it came differs (what the sort is for).
   EXPECT_NE(sums(unsorted), sums(a));
+}
+
+// A stop (Config::stop) leaves no energy behind: every chain still running deposits its
+// remaining steps' energy where it stands and every chain still waiting for a slot deposits all
+// of its energy at its seed, so the film holds what the uninterrupted run deposits, to the
+// rounding of the sums (a stop in consume, with chains waiting, and one in finish).
+TEST(ErptLanes, AStopDepositsTheEnergyOfEveryChainLeft) {
+  ErptWorld w(defaultScene(), 32, 2, FilterKind::Box);
+  const StepConfig ctx = w.stepContext(MutationStrategy::Mixed);
+  ChainSettings settings;
+  settings.chainLength = 40;
+  settings.directSamples = -1;
+  const double ed = 0.002;
+  auto energyOf = [](const RgbImage& image) {
+    double sum = 0;
+    for (const Color& c : image.pixels) sum += double(luminance(c));
+    return sum;
+  };
+  const LaneRun whole = runLanes(w, ctx, settings, 2, ed);
+  ASSERT_GT(whole.stats.mutations, 20000u);
+  for (const uint64_t stopAfter : {uint64_t(3000), whole.stats.mutations * 3 / 4}) {
+    ThreadPool pool(2);
+    Film film(w.width, w.height);
+    ErptStats stats;
+    StageTimes times;
+    std::atomic<bool> stop{false};
+    ChainLanes::Config config{ctx, settings, 11, 64, ed, &stop};
+    config.lanes = 2;
+    config.onSteps = [&](uint64_t steps) {
+      if (steps >= stopAfter) stop = true;
+    };
+    ChainLanes chains(*w.tracer, config, film, stats, times);
+    SeedStore seeds = w.seeds;
+    const bool consumed = chains.consume(seeds);
+    const bool finished = consumed && chains.finish();
+    EXPECT_FALSE(finished) << stopAfter;
+    EXPECT_LT(chains.stepsTaken(), whole.stats.mutations) << stopAfter;
+    EXPECT_NEAR(energyOf(chains.image(1.0)), energyOf(whole.image), 1e-5 * energyOf(whole.image)) << stopAfter;
+  }
+  // Without the deposits of the chains left, the first stop would lose most of the energy.
+}
+
+// The chain maps' tallies (DepositFilters): each proposal a chain makes is counted once (also
+// while slots wait empty at the end of a run), and its acceptance probability with it.
+TEST(ErptLanes, ProposalTalliesCountEachProposalOnce) {
+  ErptWorld w(defaultScene(), 32, 2, FilterKind::Box);
+  ChainSettings settings;
+  settings.chainLength = 30;
+  settings.directSamples = -1;
+  settings.chainMaps = true;
+  ThreadPool pool(2);
+  Film film(w.width, w.height);
+  ErptStats stats;
+  StageTimes times;
+  ChainLanes::Config config{w.stepContext(MutationStrategy::LensOnly), settings, 11, 64, 0.002};
+  config.lanes = 2;
+  ChainLanes chains(*w.tracer, config, film, stats, times);
+  SeedStore seeds = w.seeds;
+  ASSERT_TRUE(chains.consume(seeds));
+  ASSERT_TRUE(chains.finish());
+  uint64_t counted = 0, acceptance = 0;
+  for (uint32_t t : chains.tallies().proposals) counted += t;
+  for (uint64_t a : chains.tallies().acceptance) acceptance += a;
+  // Lens proposals count at their film position unless it is off the film.
+  const uint64_t offFilm = stats.rejected[kRejectOffFilm];
+  EXPECT_EQ(counted + offFilm, stats.mutations);
+  const double meanQ = double(acceptance) * kAcceptanceUnit / double(counted);
+  EXPECT_GT(meanQ, 0.05);
+  EXPECT_LT(meanQ, 1.0);
 }
 
 }  // namespace

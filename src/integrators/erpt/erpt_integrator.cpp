@@ -17,6 +17,7 @@
 
 #include "core/rng.h"
 #include "integrators/chain_lanes.h"
+#include "integrators/group_progress.h"
 #include "integrators/noise_filters.h"
 #include "integrators/seed_checks.h"
 #include "integrators/seed_sampler.h"
@@ -94,10 +95,11 @@ RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats
   // The chains hold paths of 4 vertices or more when the direct pass renders the shorter ones.
   const VertexRange lengths{o.directSamples > 0 ? 4 : 2,
                             s.maxDepth >= 0 ? std::min(kMaxChainVertices, s.maxDepth + 1) : kMaxChainVertices};
+  GroupProgress progress;
   ChainLanes::Config config{StepConfig{MeasureContext{scene, setup.lights, setup.camera, density}, stepSettingsOf(o),
                                        nullptr, lengths},
                             chainSettingsOf(o), chainSeed, kErptLaneSlots, es.depositEnergy, s.stop,
-                            setup.pool.threads()};
+                            [&](uint64_t steps) { progress.chainSteps(steps); }, setup.pool.threads()};
   ChainLanes chains(setup.tracer, config, setup.film, es, stats.stages);
   if (stopRequested(s.stop) && !s.resume && !s.share.split()) {  // stopped in the pilot or the direct pass
     stats.spp = 0;
@@ -138,9 +140,14 @@ RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats
   // Passes [first, end): their seeds stream into the chains, which then run to their end, so
   // that the state after the group holds no chain in flight.
   PathTracerScratch seedScratch;
-  passes.run = [&](int first, int end, const std::function<void(double)>& progress) {
+  const size_t pixels = setup.order.size();
+  passes.run = [&](int first, int end, const std::function<void(double)>& report) {
     chainsRan = true;
-    const PathTraceOutput out{nullptr, nullptr, &store, sink, progress, s.stop, &seedScratch};
+    // The group's chains take about M pixels (end - first) / spp steps (e_d's definition).
+    progress.start(report, chains.stepsTaken(),
+                   double(o.mutationsPerPixel) * double(pixels) * double(end - first) / double(std::max(1, s.spp)));
+    const PathTraceOutput out{nullptr, nullptr, &store, sink, [&](double f) { progress.seeds(f); }, s.stop,
+                              &seedScratch};
     if (!traceSeedSamples(o.seeds, s.height, setup, passSamples(setup.order, first, end, s.share), out, seedStats) ||
         !chainsRan)
       return false;
@@ -153,16 +160,35 @@ RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats
                         &es.mutations, &es.deposits, &es.rays, &es.cappedSeeds});
   };
   auto image = [&](int done, std::vector<std::pair<std::string, RgbImage>>* extras) {
-    return redistributionImage(s, chains.image(double(done)), direct,
-                               o.pmFilterRadius >= 0 ? &chains.proposalTally() : nullptr, extras);
+    RgbImage shown = redistributionImage(s, chains.image(double(done)), direct,
+                                         o.pmFilterRadius >= 0 ? &chains.proposalTally() : nullptr, extras);
+    if (extras) addChainMaps(chains.tallies(), s.width, s.height, *extras);
+    return shown;
   };
   passes.image = [&](int done) { return image(done, nullptr); };
-  renderInSamplePasses(s, setup.order.size(), stats, passes);
+  // A stop inside a group: the seeds of its first samples went to the chains, which deposited
+  // all of their energy (ChainLanes::depositUnfinished). Those samples are the passes'
+  // samples in pixel order, so each pixel is normalised by its own count of them.
+  RgbImage kept;
+  passes.stoppedImage = [&](int done, int end, RenderStats& st) {
+    const size_t taken = size_t(std::llround(progress.seedShare() * double(pixels) * double(end - done)));
+    std::vector<double> perPixel(pixels, double(done) + double(taken / pixels));
+    for (size_t k = 0; k < taken % pixels; ++k) perPixel[setup.order[k]] += 1;
+    RgbImage deposits = chains.image(1.0);
+    for (size_t i = 0; i < pixels; ++i) deposits.pixels[i] *= perPixel[i] > 0 ? float(1.0 / perPixel[i]) : 0.0f;
+    st.keptSpp = double(done) + double(taken) / double(pixels);
+    kept = redistributionImage(s, std::move(deposits), direct,
+                               o.pmFilterRadius >= 0 ? &chains.proposalTally() : nullptr, &st.extraImages);
+    addChainMaps(chains.tallies(), s.width, s.height, st.extraImages);
+    return kept;
+  };
+  renderInSamplePasses(s, pixels, stats, passes);
   es.erptSeconds = inChains;
   stats.samples = seedStats.samples;
   stats.rays += seedStats.rays + es.rays;
   stats.invalidSamples = seedStats.invalidSamples;
   for (const auto& [name, seconds] : seedStats.stages.all()) stats.stages.add("seed " + name, seconds);
+  if (stats.keptSpp > 0) return kept;
   if (stats.spp == 0) return passes.image(1);  // stopped before the first pass: black
   return image(stats.spp, &stats.extraImages);
 }
@@ -190,6 +216,7 @@ IntegratorModule erptModule() {
                directSamplesOption(), seedsOption(), bidirectionalMutationOption()};
   addOptions(m.options, perturbationOptions());
   addOptions(m.options, depositOptions());
+  m.options.push_back(chainMapsOption());
   m.validate = [](const RenderSettings& s) { validateErptSettings(erptOf(s)); };
   m.render = renderErpt;
   m.printSummary = printErptSummary;

@@ -26,6 +26,7 @@
 #include <unordered_map>
 
 #include "integrators/chain_lanes.h"
+#include "integrators/group_progress.h"
 #include "stages/mlt_stages.h"
 #include "core/rng.h"
 #include "integrators/seed_checks.h"
@@ -234,9 +235,15 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
         },
         ordinal);
   };
+  // Progress: the bootstrap's samples and the chains' steps, as units of work alike.
+  const double mutationsRequested = double(options.mutationsPerPixel) * double(s.width) * double(s.height);
+  const double work = double(all.count) + mutationsRequested;
+  auto bootProgress = [&](double f) {
+    if (s.progress) s.progress(f * double(all.count) / work);
+  };
   RenderStats bootStats;
   if (!traceSeedSamples(options.seeds, bs.height, bootSetup, all,
-                        PathTraceOutput{nullptr, nullptr, &store, firstSink, nullptr, s.stop}, bootStats))
+                        PathTraceOutput{nullptr, nullptr, &store, firstSink, bootProgress, s.stop}, bootStats))
     return partial();
   const double spp = double(bs.spp);
   ms.bootstrapSamples = bootStats.samples;
@@ -247,7 +254,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
 
   // The chains' start states; the second trace runs only the samples that made them (the
   // same paths, bit for bit: a sample's random stream is keyed by its pixel and number).
-  const double mutations = double(options.mutationsPerPixel) * double(s.width) * double(s.height);
+  const double mutations = mutationsRequested;
   const size_t chains = boot.energies.empty() ? 0 : size_t(std::min<double>(mltOf(s).chains, mutations));
   const uint32_t length = chains ? uint32_t(std::max(1.0, std::round(mutations / double(chains)))) : 0;
   // The chains' starts: systematic resampling of the domain contributions by luminance.
@@ -301,8 +308,16 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   largeCtx.seed = streamKey(s.seed, kLargeStepStream, 0);
   largeCtx.spp = 1;
   const MltPolicy policy(setup.tracer, largeCtx, uint32_t(s.width) * uint32_t(s.height));
+  const double steps = double(chains) * double(length);
+  GroupProgress chainProgress;
+  chainProgress.start(
+      [&](double f) {
+        if (s.progress) s.progress((double(all.count) + f * mutations) / work);
+      },
+      0, steps);
+  chainProgress.seeds(1.0);
   ChainLanes::Config config{ctx, chainSettings, s.seed, kErptLaneSlots, ms.energyPerStep, s.stop,
-                            setup.pool.threads(), &policy};
+                            [&](uint64_t taken) { chainProgress.chainSteps(taken); }, setup.pool.threads(), &policy};
   ChainLanes machine(setup.tracer, config, setup.film, erptStatsOf(stats), stats.stages);
   const auto chainStart = std::chrono::steady_clock::now();
   const bool done = chains == 0 || (machine.startChains(starts, float(ms.energyPerStep)) && machine.finish());
@@ -310,16 +325,24 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   erptStatsOf(stats).erptSeconds = ms.chainSeconds;
   erptStatsOf(stats).depositEnergy = ms.energyPerStep;
   stats.rays += erptStatsOf(stats).rays;
-  if (!done) return partial();
 
+  // Stopped in the chains: each chain left its remaining energy where it stood
+  // (ChainLanes::depositUnfinished), so the image holds all of b; keptSpp says how many
+  // mutations per pixel were run.
   RgbImage image = machine.image(1.0);
   const RgbImage rest = inPlace.resolve(spp);
   for (size_t i = 0; i < image.pixels.size(); ++i) {
     image.pixels[i] += rest.pixels[i];
     if (!direct.pixels.empty()) image.pixels[i] += direct.pixels[i];
   }
-  stats.spp = 1;
+  stats.spp = done ? 1 : 0;
+  if (!done) {
+    stats.partial = true;
+    // The image holds all of b at any stop: it stands for the share of the steps run.
+    stats.keptSpp = std::max(1e-9, double(s.spp) * double(machine.stepsTaken()) / std::max(1.0, steps));
+  }
   stats.samples = bootStats.samples;
+  addChainMaps(machine.tallies(), s.width, s.height, stats.extraImages);
   return image;
 }
 
@@ -343,6 +366,7 @@ IntegratorModule mltModule() {
                              "mutations-per-pixel x pixels / chains steps",
                              1, 100000000, [](auto& s) -> auto& { return mltOf(s).chains; })};
   addOptions(m.options, perturbationOptions());
+  m.options.push_back(chainMapsOption());
   m.sppOption = "mutations-per-pixel";  // Mitsuba's MLT takes its sampler's sample count as this
   m.validate = [](const RenderSettings& s) {
     // A time-budgeted render checks its own per-pass hook in each pass.

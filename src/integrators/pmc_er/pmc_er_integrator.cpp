@@ -211,12 +211,29 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
                         &ps.inPlaceSeeds, &ps.membersBorn, &ps.eliminated, &ps.split, &ps.steps});
   };
   auto image = [&](int done, std::vector<std::pair<std::string, RgbImage>>* extras) {
-    return redistributionImage(s, setup.film.resolve(double(done)), direct,
-                               erptOf(s).pmFilterRadius >= 0 ? &population.proposalTally() : nullptr, extras);
+    RgbImage shown = redistributionImage(s, setup.film.resolve(double(done)), direct,
+                                         erptOf(s).pmFilterRadius >= 0 ? &population.proposalTally() : nullptr, extras);
+    if (extras) addChainMaps(population.tallies(), s.width, s.height, *extras);
+    return shown;
   };
   passes.image = [&](int done) { return image(done, nullptr); };
+  // A stop inside a group: the population deposited what it held (PmcPopulation::run), the
+  // energy of the positions it had taken; each round visits the pixels in a random order, so
+  // each pixel is normalised by the mean count of its samples taken.
+  RgbImage kept;
+  passes.stoppedImage = [&](int done, int, RenderStats& st) {
+    st.keptSpp = double(done) + double(population.positionsTaken()) / double(pixels);
+    kept = redistributionImage(s, setup.film.resolve(st.keptSpp), direct,
+                               erptOf(s).pmFilterRadius >= 0 ? &population.proposalTally() : nullptr, &st.extraImages);
+    addChainMaps(population.tallies(), s.width, s.height, st.extraImages);
+    return kept;
+  };
   renderInSamplePasses(s, pixels, stats, passes);
   summarizeEnergies(stats);
+  if (stats.keptSpp > 0) {
+    stats.extraImages.emplace_back("strategy", population.strategyImage());
+    return kept;
+  }
   if (stats.spp == 0) return passes.image(1);  // stopped before the first pass: black
   stats.extraImages.emplace_back("strategy", population.strategyImage());
   return image(stats.spp, &stats.extraImages);
@@ -270,6 +287,7 @@ IntegratorModule pmcErModule() {
                  0, 1, [](auto& s) -> auto& { return pmcOf(s).drainRemainder; }, /*minOpen=*/true),
       directSamplesOption(), seedsOption()};
   addOptions(m.options, depositOptions());
+  m.options.push_back(chainMapsOption());
   m.validate = [](const RenderSettings& s) { validatePmcSettings(pmcOf(s), erptOf(s)); };
   m.render = renderPmcEr;
   m.printSummary = printPmcSummary;

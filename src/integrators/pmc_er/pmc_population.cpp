@@ -59,15 +59,13 @@ PmcPopulation::PmcPopulation(const RenderSetup& tracing, const Config& config, P
   stratRadius_.assign(pixels, 0.0);
   stratAccept_.assign(pixels, 0.0);
   filters_.maxConsecutive = uint32_t(config.chains.maxConsecutive);
-  if (config.chains.pmFilterRadius >= 0) {
-    tally_.assign(pixels, 0);
-    filters_.proposalTally = &tally_;
-  }
+  tallies_.allocate(pixels, config.chains.pmFilterRadius >= 0, config.chains.chainMaps);
+  tallies_.attach(filters_);
   for (size_t first = 0; first < n; first += kPmcLaneSlots) {
     const size_t rows = std::min(kPmcLaneSlots, n - first);
     lanes_.push_back(std::make_unique<ChainLane>(rows));
     lanes_.back()->filters.maxConsecutive = filters_.maxConsecutive;
-    lanes_.back()->filters.proposalTally = filters_.proposalTally;
+    tallies_.attach(lanes_.back()->filters);
     spareChains_.emplace_back().resize(rows);
     spareVertices_.emplace_back().resize(rows * kMaxChainVertices);
   }
@@ -104,7 +102,16 @@ bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::
   size_t members = slots();
   bool taking = true;
   for (uint64_t it = 1;; ++it) {
-    if (stopRequested(stop)) return false;
+    if (stopRequested(stop)) {
+      // Every member deposits what it holds where it stands, so the film holds the energy of
+      // the positions taken (the render keeps it or rolls back: RenderStats::keptSpp).
+      if (config_.film) {
+        depositRemaining();
+        addLargeDeposits(large_, config_.step.measure.film, *config_.film);
+        exact_->moveInto(*config_.film);
+      }
+      return false;
+    }
     const bool last = maxIterations >= 0 && it >= uint64_t(maxIterations);
     size_t take = 0;
     if (!last) {
@@ -151,7 +158,7 @@ void PmcPopulation::save(ByteWriter& w) const {
   counters_.save(w);
   w.put(filters_.discarded), w.put(filters_.discardedEnergy);
   w.put(deposited_), w.put(depositSum_), w.put(depositSteps_);
-  w.putVector(tally_);
+  tallies_.save(w);
   w.putVector(stratCount_), w.putVector(stratRadius_), w.putVector(stratAccept_);
 }
 
@@ -159,14 +166,14 @@ void PmcPopulation::load(ByteReader& r) {
   counters_.load(r);
   r.get(filters_.discarded), r.get(filters_.discardedEnergy);
   r.get(deposited_), r.get(depositSum_), r.get(depositSteps_);
-  r.getVector(tally_, tally_.size());
+  tallies_.load(r);
   r.getVector(stratCount_, stratCount_.size());
   r.getVector(stratRadius_, stratRadius_.size());
   r.getVector(stratAccept_, stratAccept_.size());
 }
 
 void PmcPopulation::reduce(const std::function<void(std::vector<double>&)>& sum) {
-  reduceTally(tally_, sum);
+  tallies_.reduce(sum);
   sum(stratCount_), sum(stratRadius_), sum(stratAccept_);
 }
 

@@ -84,7 +84,8 @@ class PmcPopulation {
   // Per pixel of the members' paths: R deposits made from there, G mean radius chosen, B mean
   // acceptance (the paper's figure 6).
   RgbImage strategyImage() const;
-  const std::vector<uint32_t>& proposalTally() const { return tally_; }
+  const std::vector<uint32_t>& proposalTally() const { return tallies_.proposals; }
+  const ProposalTallies& tallies() const { return tallies_; }
   double depositedEnergy() const { return deposited_; }
 
  private:
@@ -139,7 +140,7 @@ class PmcPopulation {
   std::unique_ptr<PathTracerScratch> poolScratch_;
   std::vector<double> regionSums_;
   std::vector<double> stratCount_, stratRadius_, stratAccept_;
-  std::vector<uint32_t> tally_;
+  ProposalTallies tallies_;
   double deposited_ = 0, depositSum_ = 0;
   uint64_t depositSteps_ = 0;
 };

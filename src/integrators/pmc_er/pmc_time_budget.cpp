@@ -165,6 +165,7 @@ RgbImage renderPmcForTime(const Scene& scene, const RenderSettings& s, const Pmc
   const RgbImage image = redistributionImage(s, parts.setup.film.resolve(rounds), direct.image(),
                                              erptOf(s).pmFilterRadius >= 0 ? &population.proposalTally() : nullptr,
                                              &stats.extraImages);
+  addChainMaps(population.tallies(), s.width, s.height, stats.extraImages);
   stats.spp = int(std::lround(rounds));  // whole rounds
   stats.partial = false;
   if (s.onPass) s.onPass(image, budget.elapsedRendering(), stats.spp);
