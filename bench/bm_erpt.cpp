@@ -212,7 +212,7 @@ void BM_ErptChainLoop(benchmark::State& state) {
   double embree = 0, serial = 0, total = 0;
   for (auto _ : state) {
     Film film(kSize, kSize);
-    ErptStats stats;
+    ChainStats stats;
     StageTimes times;
     ChainLanes chains(f.tracer, config, film, stats, times);
     chains.consume(f.seeds);

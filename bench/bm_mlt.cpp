@@ -23,14 +23,14 @@ void BM_MltRender(benchmark::State& state) {
   s.filter = FilterKind::Box;
   s.threads = int(state.range(0));
   mltOf(s).largeStepProbability = float(state.range(1)) / 10.0f;
-  erptOf(s).mutationsPerPixel = 64;
+  chainOf(s).mutationsPerPixel = 64;
   uint64_t mutations = 0, rays = 0;
   double seconds = 0, chain = 0, bootstrap = 0, large = 0;
   for (auto _ : state) {
     RenderStats stats;
     render(scene, s, stats);
-    mutations += erptStatsOf(stats).mutations;
-    rays += erptStatsOf(stats).rays;
+    mutations += chainStatsOf(stats).mutations;
+    rays += chainStatsOf(stats).rays;
     seconds += stats.seconds;
     chain += mltStatsOf(stats).chainSeconds;
     bootstrap += mltStatsOf(stats).bootstrapSeconds;

@@ -23,13 +23,13 @@ void BM_PmcRender(benchmark::State& state) {
   s.filter = FilterKind::Box;
   s.threads = int(state.range(0));
   pmcOf(s).flow = state.range(1) ? PmcFlow::Balance : PmcFlow::EqualDeposition;
-  erptOf(s).directSamples = -1;
+  chainOf(s).directSamples = -1;
   uint64_t mutations = 0;
   double seconds = 0, chain = 0, resample = 0, regenerate = 0, train = 0;
   for (auto _ : state) {
     RenderStats stats;
     render(scene, s, stats);
-    mutations += erptStatsOf(stats).mutations;
+    mutations += chainStatsOf(stats).mutations;
     seconds += stats.seconds;
     chain += pmcStatsOf(stats).chainSeconds;
     resample += pmcStatsOf(stats).resampleSeconds;

@@ -1,6 +1,6 @@
 // Options and statistics of `--integrator mlt` (Metropolis light transport over ERPT's mutation
 // engine; docs/mlt.md). The mutation options (strategy, lens radius, caustic angle, direct
-// split, mutations per pixel) are ERPT's (ErptSettings).
+// split, mutations per pixel) are the chain integrators' shared ones (ChainOptions).
 #pragma once
 
 #include <algorithm>

@@ -48,8 +48,8 @@ struct RenderSettings {
   // Path tracer with `seeds` set: called after every batch with that batch's seeds, which are
   // then cleared (streaming, so memory stays bounded). Unset: the store keeps all seeds.
   std::function<void(SeedStore&)> seedSink;
-  // Each integrator's own options (erptOf(s), pmcOf(s), mltOf(s)); PMC-ER and MLT read the
-  // options they share with ERPT (direct split, deposits, filters, perturbations) from ERPT's.
+  // Each integrator's own options (erptOf(s), pmcOf(s), mltOf(s)), and the options the chain
+  // integrators share (chainOf(s): direct split, deposits, filters, perturbations).
   PerIntegrator options;
   // The Embree scene. render() builds it once and every pass and sub-render (ERPT's pilot,
   // seed and direct passes, time-budgeted passes) shares it; unset: the integrator builds one.
@@ -88,8 +88,8 @@ struct RenderStats {
   uint64_t invalidSamples = 0;  // NaN/Inf estimates, dropped and counted
   uint64_t refusedRays = 0;     // rays the tracer would not trace (kRefusedRay), over the render
   StageTimes stages;
-  // Each integrator's own statistics (erptStatsOf(stats), pmcStatsOf(stats), mltStatsOf(stats);
-  // PMC-ER and MLT count their chain steps in ERPT's).
+  // Each integrator's own statistics (pmcStatsOf(stats), mltStatsOf(stats)), and the chain
+  // integrators' shared counts of their chain steps (chainStatsOf(stats)).
   PerIntegrator own;
   int spp = 0;  // samples per pixel rendered (time-budgeted renders choose it)
   int passes = 0;

@@ -215,7 +215,7 @@ int runCompare(const CompareArgs& a) {
     row.seconds = row.curveSeconds.empty() ? stats.seconds : row.curveSeconds.back();
     row.spp = stats.spp;
     row.passes = stats.passes;
-    row.mutations = erptStatsOf(stats).mutations;
+    row.mutations = chainStatsOf(stats).mutations;
     row.error = compareImages(image, reference);
     const fs::path out = fs::path(a.outDir) / fileStem(name);
     writeImageAtomic(out.string() + ".exr", image);

@@ -22,7 +22,7 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
 }  // namespace
 
 
-ChainLanes::ChainLanes(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times)
+ChainLanes::ChainLanes(const Tracer& tracer, const Config& config, Film& film, ChainStats& stats, StageTimes& times)
     : tracer_(tracer),
       config_(config),
       film_(film),

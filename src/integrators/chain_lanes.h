@@ -57,7 +57,7 @@ class ChainLanes {
   };
   // Seeds deposited in place go to `film` (in seed order); the chains deposit into the
   // machine's own ExactFilm: image() is the sum of both.
-  ChainLanes(const Tracer& tracer, const Config& config, Film& film, ErptStats& stats, StageTimes& times);
+  ChainLanes(const Tracer& tracer, const Config& config, Film& film, ChainStats& stats, StageTimes& times);
   ~ChainLanes();
 
   // Starts floor(U + e / (m e_d)) chains for each seed of the batch (detailed balance: one,
@@ -124,7 +124,7 @@ class ChainLanes {
   const Tracer& tracer_;
   Config config_;
   Film& film_;
-  ErptStats& stats_;
+  ChainStats& stats_;
   StageTimes& times_;
   ExactFilm exact_;
   std::vector<std::unique_ptr<ChainLane>> lanes_;

@@ -9,14 +9,16 @@ namespace erpt {
 struct ChainSettings {
   int chainLength = ErptSettings{}.chainLength;            // m: steps of every chain
   int maxChainsPerSeed = ErptSettings{}.maxChainsPerSeed;  // chains one seed may start
-  int directSamples = ErptSettings{}.directSamples;        // > 0: one-bounce seeds are the direct pass's
-  int maxConsecutive = ErptSettings{}.maxConsecutive;      // consecutive-sample filter (0: off)
-  int pmFilterRadius = ErptSettings{}.pmFilterRadius;      // proposed-mutations filter (-1: off)
-  bool chainMaps = ErptSettings{}.chainMaps;               // tally the mutations and acceptance maps
+  int directSamples = ChainOptions{}.directSamples;        // > 0: one-bounce seeds are the direct pass's
+  int maxConsecutive = ChainOptions{}.maxConsecutive;      // consecutive-sample filter (0: off)
+  int pmFilterRadius = ChainOptions{}.pmFilterRadius;      // proposed-mutations filter (-1: off)
+  bool chainMaps = ChainOptions{}.chainMaps;               // tally the mutations and acceptance maps
 };
 
-inline ChainSettings chainSettingsOf(const ErptSettings& s) {
-  return ChainSettings{s.chainLength, s.maxChainsPerSeed, s.directSamples, s.maxConsecutive, s.pmFilterRadius, s.chainMaps};
+// ERPT's chains take its chain length and cap; PMC-ER's and MLT's keep the defaults (MLT sets
+// its own length).
+inline ChainSettings chainSettingsOf(const ChainOptions& c, const ErptSettings& e = ErptSettings{}) {
+  return ChainSettings{e.chainLength, e.maxChainsPerSeed, c.directSamples, c.maxConsecutive, c.pmFilterRadius, c.chainMaps};
 }
 
 }  // namespace erpt

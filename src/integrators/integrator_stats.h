@@ -10,7 +10,7 @@
 
 namespace erpt {
 
-void addErptStats(ErptStats& to, const ErptStats& from);
+void addChainStats(ChainStats& to, const ChainStats& from);  // chain_stats.cpp
 void addPmcStats(PmcStats& to, const PmcStats& from);
 void addMltStats(MltStats& to, const MltStats& from);
 
@@ -18,9 +18,9 @@ void printErptSummary(const RenderStats& stats);
 void printPmcSummary(const RenderStats& stats);
 void printMltSummary(const RenderStats& stats);
 // The chain step's proposals and acceptance per mutation kind, and its rejections by reason,
-// as one line each after `prefix:` (ERPT's and MLT's summaries).
-void printChainMoves(const char* prefix, const ErptStats& stats);
-void printRejections(const char* prefix, const ErptStats& stats);
+// as one line each after `prefix:` (the chain integrators' summaries).
+void printChainMoves(const char* prefix, const ChainStats& stats);
+void printRejections(const char* prefix, const ChainStats& stats);
 // "stage seconds:" and the seconds of each of the chain engine's stages, ending the line.
 void printChainStageSeconds(const RenderStats& stats);
 

@@ -17,19 +17,19 @@ namespace {
 constexpr uint64_t kDirectStream = 0x646972656374ull;
 }  // namespace
 
-void validateChainOptions(const ErptSettings& o) {
+void validateChainOptions(const ChainOptions& o) {
   if (o.directSamples == 0) throw UsageError("--direct-samples must be -1 (the chains render direct light too) or at least 1");
 }
 
 RgbImage renderDirectPass(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
-  if (erptOf(s).directSamples <= 0) return RgbImage{};
+  if (chainOf(s).directSamples <= 0) return RgbImage{};
   RenderSettings direct = subRenderSettings(s);
-  direct.spp = erptOf(s).directSamples;
+  direct.spp = chainOf(s).directSamples;
   // Its own random stream: the main pass's keys would correlate the two estimates.
   direct.seed = streamKey(s.seed, kDirectStream, 0);
   RenderStats directStats;
   RgbImage d;
-  if (erptOf(s).seeds == SeedSampler::Bdpt) {
+  if (chainOf(s).seeds == SeedSampler::Bdpt) {
     // BDPT's paths of at most two segments: what the chains leave out (seedForChains).
     direct.maxDepth = s.maxDepth < 0 ? 2 : std::min(2, s.maxDepth);
     d = renderWithSeedSampler(scene, direct, directStats);
@@ -54,7 +54,7 @@ RgbImage redistributionImage(const RenderSettings& s, RgbImage image, const RgbI
   if (!direct.pixels.empty())
     for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] += direct.pixels[i];
   if (!tally) return image;
-  RgbImage filtered = proposalFilteredImage(image, chainsOnly, counts, erptOf(s).pmFilterRadius);
+  RgbImage filtered = proposalFilteredImage(image, chainsOnly, counts, chainOf(s).pmFilterRadius);
   if (extras) {
     // Keep the unfiltered image and the chains' part for the user (and for time-budgeted
     // renders, which filter the sum of their passes).
@@ -79,8 +79,8 @@ void addChainMaps(const ProposalTallies& tallies, int width, int height,
 }
 
 void scaleDirectSamples(const RenderSettings& whole, RenderSettings& pass) {
-  if (erptOf(whole).directSamples > 0)
-    erptOf(pass).directSamples = std::max(1, int(std::lround(double(erptOf(whole).directSamples) * pass.spp / whole.spp)));
+  if (chainOf(whole).directSamples > 0)
+    chainOf(pass).directSamples = std::max(1, int(std::lround(double(chainOf(whole).directSamples) * pass.spp / whole.spp)));
 }
 
 }  // namespace erpt

@@ -15,7 +15,7 @@
 namespace erpt {
 
 // Throws UsageError for shared options that do not fit together (--direct-samples 0).
-void validateChainOptions(const ErptSettings& settings);
+void validateChainOptions(const ChainOptions& options);
 // Time-budgeted passes of ERPT, PMC-ER and MLT: the direct pass's samples per pixel follow the
 // pass's share of the configured spp.
 void scaleDirectSamples(const RenderSettings& whole, RenderSettings& pass);

@@ -63,7 +63,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
   // The image of all passes so far. The proposed-mutations filter is not linear: it is applied
   // once, to the sum of the passes' chain images and tallies.
   auto resultSoFar = [&]() {
-    if (!module.proposalFiltered || erptOf(s).pmFilterRadius < 0) return image.mean(totalWeight);
+    if (!module.proposalFiltered || chainOf(s).pmFilterRadius < 0) return image.mean(totalWeight);
     RgbImage raw, chains, proposals;
     for (size_t k = 0; k < extras.size(); ++k) {
       const std::string& name = stats.extraImages[k].first;
@@ -71,7 +71,7 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
       if (name == "chains") chains = extras[k].mean(totalWeight);
       if (name == "proposals") proposals = extras[k].mean(1.0);  // a count
     }
-    return proposalFilteredImage(raw, chains, proposals, erptOf(s).pmFilterRadius);
+    return proposalFilteredImage(raw, chains, proposals, chainOf(s).pmFilterRadius);
   };
   int passSpp = 1;
   for (int p = 0;; ++p) {

@@ -6,7 +6,7 @@
 
 namespace erpt {
 
-FilmMode seedFilmMode(const ErptSettings& o) {
+FilmMode seedFilmMode(const ChainOptions& o) {
   return o.seeds == SeedSampler::Bdpt ? FilmMode::SplatUnbiased : FilmMode::Fis;
 }
 
@@ -17,7 +17,7 @@ bool traceSeedSamples(SeedSampler sampler, int height, const RenderSetup& setup,
 }
 
 RgbImage renderWithSeedSampler(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
-  if (erptOf(s).seeds == SeedSampler::Bdpt) {
+  if (chainOf(s).seeds == SeedSampler::Bdpt) {
     RenderSettings bdpt = s;
     bdptOf(bdpt) = BdptSettings{};
     return renderBdpt(scene, bdpt, stats);

@@ -12,7 +12,7 @@ struct RenderSetup;
 
 // How the sampler places film positions, for the RenderSetup it runs in: drawn from the pixel
 // filter (path) or uniform in the pixel (bdpt).
-FilmMode seedFilmMode(const ErptSettings& o);
+FilmMode seedFilmMode(const ChainOptions& o);
 // Runs `sampler` over `samples` (the setup made with its seedFilmMode, for an image `height`
 // pixels high): as tracePathSamples.
 bool traceSeedSamples(SeedSampler sampler, int height, const RenderSetup& setup, const PathSampleSet& samples,

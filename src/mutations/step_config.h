@@ -15,18 +15,19 @@ struct VertexRange {
   int min = 2, max = kMaxChainVertices;
 };
 
-// The user's options that the stages and units read (defaults: ErptSettings', declared there).
+// The user's options that the stages and units read (defaults: ChainOptions' and
+// ErptSettings', declared there).
 struct StepSettings {
-  MutationStrategy strategy = ErptSettings{}.strategy;
-  float lensRadius = ErptSettings{}.lensRadius;
-  LensShape lensShape = ErptSettings{}.lensShape;
-  CausticAngle causticAngle = ErptSettings{}.causticAngle;
-  FlowRule flow = ErptSettings{}.flow;  // DetailedBalance: chains never move
-  bool expectedDeposit = ErptSettings{}.expectedDeposit;
-  float bidirectional = ErptSettings{}.bidirectionalMutation;  // P(bidirectional mutation) per step
+  MutationStrategy strategy = ChainOptions{}.strategy;
+  float lensRadius = ChainOptions{}.lensRadius;
+  LensShape lensShape = ChainOptions{}.lensShape;
+  CausticAngle causticAngle = ChainOptions{}.causticAngle;
+  FlowRule flow = ErptSettings{}.flow;  // DetailedBalance (ERPT's): chains never move
+  bool expectedDeposit = ChainOptions{}.expectedDeposit;
+  float bidirectional = ChainOptions{}.bidirectionalMutation;  // P(bidirectional mutation) per step
 };
-inline StepSettings stepSettingsOf(const ErptSettings& s) {
-  return StepSettings{s.strategy, s.lensRadius, s.lensShape, s.causticAngle, s.flow, s.expectedDeposit,
+inline StepSettings stepSettingsOf(const ChainOptions& s, FlowRule flow = FlowRule::EqualDeposition) {
+  return StepSettings{s.strategy, s.lensRadius, s.lensShape, s.causticAngle, flow, s.expectedDeposit,
                       s.bidirectionalMutation};
 }
 

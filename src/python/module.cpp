@@ -217,7 +217,7 @@ py::dict statsOf(const RenderSettings& s, const RenderStats& stats) {
   for (const auto& [name, seconds] : stats.stages.all()) stages[py::str(name)] = seconds;
   d["stage_seconds"] = stages;
   if (s.integrator == "erpt" || s.integrator == "pmc-er" || s.integrator == "mlt") {
-    const ErptStats& e = erptStatsOf(const_cast<RenderStats&>(stats));
+    const ChainStats& e = chainStatsOf(const_cast<RenderStats&>(stats));
     d["chains"] = e.chains;
     d["mutations"] = e.mutations;
     py::dict proposed, accepted;

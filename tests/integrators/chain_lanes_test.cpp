@@ -96,7 +96,7 @@ TEST(ExactFilm, ReduceAcrossProcessesIsExact) {
 
 struct LaneRun {
   RgbImage image;
-  ErptStats stats;
+  ChainStats stats;
 };
 
 // The world's seeds through a chain machine of `lanes` lanes of 64 slots (chains wait for
@@ -206,7 +206,7 @@ TEST(ErptLanes, AStopDepositsTheEnergyOfEveryChainLeft) {
   for (const uint64_t stopAfter : {uint64_t(3000), whole.stats.mutations * 3 / 4}) {
     ThreadPool pool(2);
     Film film(w.width, w.height);
-    ErptStats stats;
+    ChainStats stats;
     StageTimes times;
     std::atomic<bool> stop{false};
     ChainLanes::Config config{ctx, settings, 11, 64, ed, &stop};
@@ -235,7 +235,7 @@ TEST(ErptLanes, ProposalTalliesCountEachProposalOnce) {
   settings.chainMaps = true;
   ThreadPool pool(2);
   Film film(w.width, w.height);
-  ErptStats stats;
+  ChainStats stats;
   StageTimes times;
   ChainLanes::Config config{w.stepContext(MutationStrategy::LensOnly), settings, 11, 64, 0.002};
   config.lanes = 2;

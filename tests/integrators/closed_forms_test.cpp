@@ -139,8 +139,8 @@ RenderSettings bdptAlone(RenderSettings s, int onlyS, int onlyT) {
 void chains(RenderSettings& s, const char* integrator, SeedSampler seeds) {
   s.integrator = integrator;
   s.spp = 4;
-  erptOf(s).seeds = seeds;
-  erptOf(s).mutationsPerPixel = 64;
+  chainOf(s).seeds = seeds;
+  chainOf(s).mutationsPerPixel = 64;
 }
 
 const std::vector<Sampler>& samplers() {
@@ -157,7 +157,7 @@ const std::vector<Sampler>& samplers() {
       {"ErptBidirectionalMutation", 15,
        [](RenderSettings& s) {
          chains(s, "erpt", SeedSampler::Path);
-         erptOf(s).bidirectionalMutation = 0.5f;
+         chainOf(s).bidirectionalMutation = 0.5f;
        }},
       {"PmcErPathSeeds", 15,
        [](RenderSettings& s) {

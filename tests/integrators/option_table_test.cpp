@@ -86,9 +86,9 @@ TEST(OptionTable, RenderRefusesProgrammaticSettingsOutOfRange) {
     EXPECT_NE(std::string(e.what()).find("--chain-length must be in [1, 16777216]"), std::string::npos) << e.what();
   }
   erptOf(s).chainLength = 10;
-  erptOf(s).lensRadius = 0;
+  chainOf(s).lensRadius = 0;
   EXPECT_THROW(render(scene, s, stats), UsageError);
-  erptOf(s).lensRadius = 4.5f;
+  chainOf(s).lensRadius = 4.5f;
   s.integrator = "pmc-er";
   pmcOf(s).resampleRate = 2;
   EXPECT_THROW(render(scene, s, stats), UsageError);
@@ -99,7 +99,7 @@ TEST(OptionTable, ApplyingOptionsSetsOnlyTheIntegratorsOwnAndRefusesOnesWithoutE
   applyOptions(integratorNamed("erpt"), {{"chain-length", "7"}, {"population", "3"}, {"pm-filter", "true"}}, s);
   EXPECT_EQ(erptOf(s).chainLength, 7);
   EXPECT_EQ(pmcOf(s).population, PmcSettings{}.population);  // not an ERPT option: left to the front end's scope check
-  EXPECT_EQ(erptOf(s).pmFilterRadius, 3);
+  EXPECT_EQ(chainOf(s).pmFilterRadius, 3);
   RenderSettings p;
   EXPECT_THROW(applyOptions(integratorNamed("pmc-er"), {{"pmc-adapt", "off"}, {"pmc-region", "8"}}, p), UsageError);
   RenderSettings q;

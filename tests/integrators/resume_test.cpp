@@ -59,16 +59,16 @@ std::vector<Case> cases() {
   erpt.integrator = "erpt";
   erpt.width = erpt.height = 48;  // groups of 3 passes
   erpt.spp = 9;
-  erptOf(erpt).mutationsPerPixel = 16;
+  chainOf(erpt).mutationsPerPixel = 16;
   erptOf(erpt).chainLength = 20;
-  erptOf(erpt).directSamples = 4;
-  erptOf(erpt).pmFilterRadius = 2;
+  chainOf(erpt).directSamples = 4;
+  chainOf(erpt).pmFilterRadius = 2;
   out.push_back({"erpt, direct pass, pm filter", erpt});
   RenderSettings consecutive = erpt;
-  erptOf(consecutive).directSamples = -1;
-  erptOf(consecutive).pmFilterRadius = -1;
-  erptOf(consecutive).maxConsecutive = 5;
-  erptOf(consecutive).expectedDeposit = true;
+  chainOf(consecutive).directSamples = -1;
+  chainOf(consecutive).pmFilterRadius = -1;
+  chainOf(consecutive).maxConsecutive = 5;
+  chainOf(consecutive).expectedDeposit = true;
   out.push_back({"erpt, expected deposits, consecutive filter", consecutive});
   RenderSettings pmc = erpt;  // 48x48, groups of 3 passes: the population runs once per group
   pmc.integrator = "pmc-er";
@@ -78,8 +78,8 @@ std::vector<Case> cases() {
   RenderSettings balance = pmc;
   pmcOf(balance).flow = PmcFlow::Balance;
   pmcOf(balance).adapt = PmcAdapt::Member;
-  erptOf(balance).directSamples = -1;
-  erptOf(balance).pmFilterRadius = -1;
+  chainOf(balance).directSamples = -1;
+  chainOf(balance).pmFilterRadius = -1;
   out.push_back({"pmc-er, balance flow, member adaptation", balance});
   return out;
 }
@@ -213,7 +213,7 @@ TEST(StatisticalErpt, StoppedRenderIsUnbiasedAtThePassesDone) {
   s.integrator = "erpt";
   s.spp = 32;
   s.passGroupSamples = 32768;  // 64x64: groups of 8 passes; stopped after 2 groups
-  erptOf(s).mutationsPerPixel = 400;  // per pixel of the 32 spp asked for: about 200 run
+  chainOf(s).mutationsPerPixel = 400;  // per pixel of the 32 spp asked for: about 200 run
   expectStoppedRendersAreUnbiased(defaultScene(), s, 16, 16, 202);
 }
 
@@ -234,7 +234,7 @@ TEST(StatisticalPmc, SeveralGroupsOfPassesMatchPathTracerBlockByBlock) {
   s.spp = 8;
   s.passGroupSamples = 16384;  // 64x64: two groups of 4 passes
   pmcOf(s).population = 1000;
-  erptOf(s).directSamples = -1;
+  chainOf(s).directSamples = -1;
   test::expectMatchesPathTracerBlockByBlock(defaultScene(), s, 12, 5000);
 }
 
@@ -311,8 +311,8 @@ TEST(Resume, SplitRendersAddUpToTheWholeRender) {
   for (const char* integrator : {"path", "direct", "erpt", "pmc-er", "bdpt"}) {
     SCOPED_TRACE(integrator);
     s.integrator = integrator;
-    erptOf(s).directSamples = 4;
-    erptOf(s).pmFilterRadius = 1;  // the tally is summed too
+    chainOf(s).directSamples = 4;
+    chainOf(s).pmFilterRadius = 1;  // the tally is summed too
     const std::vector<RgbImage> split = renderSplit(scene, s, 2);
     EXPECT_TRUE(sameBits(split[0], split[1]));  // every rank holds the whole image
     EXPECT_TRUE(sameBits(split[0], renderSplit(scene, s, 2)[0]));  // and the same every run

@@ -64,21 +64,21 @@ TEST(TimedRender, ErptKeepsMutationsPerSeed) {
   const Scene scene = cornell();
   RenderSettings s = timed("erpt", 1.5);
   s.spp = 8;
-  erptOf(s).mutationsPerPixel = 40;
+  chainOf(s).mutationsPerPixel = 40;
   erptOf(s).chainLength = 20;
-  erptOf(s).pmFilterRadius = 2;
+  chainOf(s).pmFilterRadius = 2;
   RenderStats stats;
   const RgbImage img = render(scene, s, stats);
   std::map<std::string, RgbImage> extra(stats.extraImages.begin(), stats.extraImages.end());
   ASSERT_EQ(extra.size(), 3u);
   double proposals = 0;
   for (const Color& c : extra["proposals"].pixels) proposals += c.x;
-  EXPECT_GT(proposals, 0.5 * double(erptStatsOf(stats).mutations));
-  EXPECT_LE(proposals, double(erptStatsOf(stats).mutations));
+  EXPECT_GT(proposals, 0.5 * double(chainStatsOf(stats).mutations));
+  EXPECT_LE(proposals, double(chainStatsOf(stats).mutations));
   const RgbImage refiltered = proposalFilteredImage(extra["raw"], extra["chains"], extra["proposals"], 2);
   for (size_t i = 0; i < img.pixels.size(); ++i) ASSERT_EQ(img.pixels[i].y, refiltered.pixels[i].y) << i;
   const double expected = double(stats.spp) / 8 * 40 * 32 * 32;
-  EXPECT_NEAR(double(erptStatsOf(stats).mutations) / expected, 1.0, 0.15) << erptStatsOf(stats).mutations << " vs " << expected;
+  EXPECT_NEAR(double(chainStatsOf(stats).mutations) / expected, 1.0, 0.15) << chainStatsOf(stats).mutations << " vs " << expected;
   const Color m = test::meanOf(img), r = test::meanOf(readImage(test::sharedScenesDir() + "/cornell-box/TungstenRender.exr"));
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c] / r[c], 1.0, 0.05) << "channel " << c;
 }

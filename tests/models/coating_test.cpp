@@ -217,8 +217,8 @@ RgbImage renderWith(const Scene& scene, const std::string& integrator, int spp, 
   s.integrator = integrator;
   s.spp = spp;
   s.seed = seed;
-  erptOf(s).mutationsPerPixel = 200;
-  erptOf(s).directSamples = -1;
+  chainOf(s).mutationsPerPixel = 200;
+  chainOf(s).directSamples = -1;
   RenderStats stats;
   RgbImage img = render(scene, s, stats);
   EXPECT_EQ(stats.invalidSamples, 0u) << integrator;

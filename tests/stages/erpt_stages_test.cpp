@@ -119,7 +119,7 @@ TEST(ErptStages, NumberOfChainsHasTheRightExpectation) {
 TEST(ErptStages, DepositsSumToChainsTimesLengthTimesDepositEnergy) {
   ErptWorld w(defaultScene(), 40, 2, FilterKind::Tent);
   Film film(w.width, w.height);
-  ErptStats stats;
+  ChainStats stats;
   StageTimes times;
   StepConfig ctx = w.stepContext(MutationStrategy::Paper);
   ChainSettings lanes;

@@ -34,24 +34,24 @@ namespace {
 constexpr uint64_t kPilotStream = 0x70696c6f74ull, kRankStream = 0x72616e6bull;
 }  // namespace
 
-void validateErptSettings(const ErptSettings& o) {
+void validateErptSettings(const RenderSettings& s) {
   // The ranges of single options are their declarations' (erptModule); these are the rules
   // that tie values or options together.
-  validateChainOptions(o);
-  if (o.maxConsecutive > 0 && o.flow == FlowRule::DetailedBalance)
+  validateChainOptions(chainOf(s));
+  if (chainOf(s).maxConsecutive > 0 && erptOf(s).flow == FlowRule::DetailedBalance)
     throw UsageError("--max-consecutive needs moving chains: it does not apply to --flow detailed-balance");
 }
 
 // e_ave: mean energy per pixel sample of the seeds ERPT will redistribute.
 double erptPilotEnergy(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
-  validateErptSettings(erptOf(s));
+  validateErptSettings(s);
   RenderSettings pilot = subRenderSettings(s);
   pilot.spp = erptOf(s).pilotSpp;
   pilot.seed = streamKey(s.seed, kPilotStream, 0);
   SeedStore store;
   pilot.seeds = &store;
   double energy = 0;
-  const bool excludeDirect = erptOf(s).directSamples > 0;
+  const bool excludeDirect = chainOf(s).directSamples > 0;
   pilot.seedSink = [&](SeedStore& batch) {
     for (size_t i = 0; i < batch.size(); ++i) {
       if (!seedForChains(batch, i, excludeDirect)) continue;
@@ -76,9 +76,9 @@ RgbImage renderErpt(const Scene& scene, const RenderSettings& s, RenderStats& st
 }
 
 RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats& stats, const ErptEnergies& known) {
-  const ErptSettings& o = erptOf(s);
-  validateErptSettings(o);
-  ErptStats& es = erptStatsOf(stats);
+  const ChainOptions& o = chainOf(s);
+  validateErptSettings(s);
+  ChainStats& es = chainStatsOf(stats);
   RgbImage direct;
   if (!s.resume) {  // else pilot energy, e_d and the direct image come with the state
     es.pilotEnergy = known.pilot >= 0 ? known.pilot : erptPilotEnergy(scene, s, stats);
@@ -96,9 +96,9 @@ RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats
   const VertexRange lengths{o.directSamples > 0 ? 4 : 2,
                             s.maxDepth >= 0 ? std::min(kMaxChainVertices, s.maxDepth + 1) : kMaxChainVertices};
   GroupProgress progress;
-  ChainLanes::Config config{StepConfig{MeasureContext{scene, setup.lights, setup.camera, density}, stepSettingsOf(o),
+  ChainLanes::Config config{StepConfig{MeasureContext{scene, setup.lights, setup.camera, density}, stepSettingsOf(o, erptOf(s).flow),
                                        nullptr, lengths},
-                            chainSettingsOf(o), chainSeed, kErptLaneSlots, es.depositEnergy, s.stop,
+                            chainSettingsOf(o, erptOf(s)), chainSeed, kErptLaneSlots, es.depositEnergy, s.stop,
                             [&](uint64_t steps) { progress.chainSteps(steps); }, setup.pool.threads()};
   ChainLanes chains(setup.tracer, config, setup.film, es, stats.stages);
   if (stopRequested(s.stop) && !s.resume && !s.share.split()) {  // stopped in the pilot or the direct pass
@@ -183,7 +183,7 @@ RgbImage renderErptWith(const Scene& scene, const RenderSettings& s, RenderStats
     return kept;
   };
   renderInSamplePasses(s, pixels, stats, passes);
-  es.erptSeconds = inChains;
+  es.chainSeconds = inChains;
   stats.samples = seedStats.samples;
   stats.rays += seedStats.rays + es.rays;
   stats.invalidSamples = seedStats.invalidSamples;
@@ -217,16 +217,16 @@ IntegratorModule erptModule() {
   addOptions(m.options, perturbationOptions());
   addOptions(m.options, depositOptions());
   m.options.push_back(chainMapsOption());
-  m.validate = [](const RenderSettings& s) { validateErptSettings(erptOf(s)); };
+  m.validate = [](const RenderSettings& s) { validateErptSettings(s); };
   m.render = renderErpt;
   m.printSummary = printErptSummary;
-  m.addStats = [](RenderStats& to, const RenderStats& from) { addErptStats(erptStatsOf(to), erptStatsOf(from)); };
+  m.addStats = [](RenderStats& to, const RenderStats& from) { addChainStats(chainStatsOf(to), chainStatsOf(from)); };
   m.timedPasses = [](const Scene& scene, const RenderSettings& s, RenderStats& stats) -> PassRenderer {
     // One pilot for all passes (it is independent of every one of them), and e_d from the
     // configured spp, so each pass runs the configured mutations per seed.
     ErptEnergies known;
     known.pilot = erptPilotEnergy(scene, s, stats);
-    known.deposit = double(s.spp) * known.pilot / std::max(1, erptOf(s).mutationsPerPixel);
+    known.deposit = double(s.spp) * known.pilot / std::max(1, chainOf(s).mutationsPerPixel);
     return [known](const Scene& sc, const RenderSettings& pass, RenderStats& ps) {
       return renderErptWith(sc, pass, ps, known);
     };

@@ -154,12 +154,12 @@ struct Bootstrap {
 }  // namespace
 
 void validateMltSettings(const RenderSettings& s) {
-  validateChainOptions(erptOf(s));
+  validateChainOptions(chainOf(s));
   const MltSettings& m = mltOf(s);
-  const double mutations = double(erptOf(s).mutationsPerPixel) * double(s.width) * double(s.height);
+  const double mutations = double(chainOf(s).mutationsPerPixel) * double(s.width) * double(s.height);
   if (mutations / double(m.chains) > double(1 << 30))
     throw UsageError("--mutations-per-pixel x pixels / --chains gives more than 2^30 steps per chain; raise --chains");
-  if (erptOf(s).pmFilterRadius >= 0 || erptOf(s).maxConsecutive > 0)
+  if (chainOf(s).pmFilterRadius >= 0 || chainOf(s).maxConsecutive > 0)
     throw UsageError("--pm-filter and --max-consecutive are ERPT's noise filters; mlt does not take them");
   if (erptOf(s).flow != FlowRule::EqualDeposition) throw UsageError("--flow is ERPT's; mlt does not take it");
   if (s.share.split()) throw UsageError("mlt does not split a render over processes yet");
@@ -169,7 +169,7 @@ void validateMltSettings(const RenderSettings& s) {
 RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
   validateMltSettings(s);
   MltStats& ms = mltStatsOf(stats);
-  const ErptSettings& options = erptOf(s);
+  const ChainOptions& options = chainOf(s);
   StepSettings step = stepSettingsOf(options);
   step.expectedDeposit = true;  // MLT's expected-value splatting of current and proposed paths
   const RgbImage direct = renderDirectPass(scene, s, stats);
@@ -318,13 +318,13 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   chainProgress.seeds(1.0);
   ChainLanes::Config config{ctx, chainSettings, s.seed, kErptLaneSlots, ms.energyPerStep, s.stop,
                             [&](uint64_t taken) { chainProgress.chainSteps(taken); }, setup.pool.threads(), &policy};
-  ChainLanes machine(setup.tracer, config, setup.film, erptStatsOf(stats), stats.stages);
+  ChainLanes machine(setup.tracer, config, setup.film, chainStatsOf(stats), stats.stages);
   const auto chainStart = std::chrono::steady_clock::now();
   const bool done = chains == 0 || (machine.startChains(starts, float(ms.energyPerStep)) && machine.finish());
   ms.chainSeconds = secondsSince(chainStart);
-  erptStatsOf(stats).erptSeconds = ms.chainSeconds;
-  erptStatsOf(stats).depositEnergy = ms.energyPerStep;
-  stats.rays += erptStatsOf(stats).rays;
+  chainStatsOf(stats).chainSeconds = ms.chainSeconds;
+  chainStatsOf(stats).depositEnergy = ms.energyPerStep;
+  stats.rays += chainStatsOf(stats).rays;
 
   // Stopped in the chains: each chain left its remaining energy where it stood
   // (ChainLanes::depositUnfinished), so the image holds all of b; keptSpp says how many
@@ -377,12 +377,12 @@ IntegratorModule mltModule() {
   m.render = renderMlt;
   m.printSummary = printMltSummary;
   m.addStats = [](RenderStats& to, const RenderStats& from) {
-    addErptStats(erptStatsOf(to), erptStatsOf(from));  // the chain step's counts
+    addChainStats(chainStatsOf(to), chainStatsOf(from));  // the chain step's counts
     addMltStats(mltStatsOf(to), mltStatsOf(from));
   };
   m.scaleTimedPass = [](const RenderSettings& s, RenderSettings& pass) {
     // Each pass runs the configured mutations per pixel scaled by its share of the spp.
-    erptOf(pass).mutationsPerPixel = std::max(1, int(std::lround(double(erptOf(s).mutationsPerPixel) * pass.spp / s.spp)));
+    chainOf(pass).mutationsPerPixel = std::max(1, int(std::lround(double(chainOf(s).mutationsPerPixel) * pass.spp / s.spp)));
     scaleDirectSamples(s, pass);
   };
   return m;

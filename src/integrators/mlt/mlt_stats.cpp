@@ -21,7 +21,7 @@ void addMltStats(MltStats& to, const MltStats& from) {
 
 void printMltSummary(const RenderStats& stats) {
   const MltStats& m = mltStatsOf(stats);
-  const ErptStats& e = erptStatsOf(stats);
+  const ChainStats& e = chainStatsOf(stats);
   std::fprintf(stderr,
                "mlt: b %.6g (bootstrap: %llu samples, %llu paths for the chains, %llu deposited in place holding "
                "%.4g), %.2f s\n",

@@ -63,7 +63,7 @@ std::string regionAdaptationOnly(const RenderSettings& s) {
 }
 }  // namespace
 
-void validatePmcSettings(const PmcSettings& p, const ErptSettings& e) {
+void validatePmcSettings(const PmcSettings& p, const ChainOptions& e) {
   // The ranges of single options are their declarations' (pmcErModule); these tie values together.
   validateChainOptions(e);
   if (p.radii.empty() || p.radii.size() > size_t(kMaxPmcRadii))
@@ -87,12 +87,12 @@ void trainRegionTable(const Scene& scene, const RenderSettings& s, const StepCon
   ts.seed = streamKey(s.seed, kTrainStream, 0);
   const double positions = double(p.population) * (1.0 + p.trainIterations * p.resampleRate);
   ts.spp = int(std::clamp(std::ceil(positions / pixels), 1.0, double(1 << 20)));
-  RenderSetup trainSetup(scene, ts, seedFilmMode(erptOf(s)));
+  RenderSetup trainSetup(scene, ts, seedFilmMode(chainOf(s)));
   PmcSettings tp = p;
   tp.adapt = PmcAdapt::Off;
   PmcMixture uniform(tp, s.width, s.height);
   RenderStats trainStats;
-  PmcPopulation trainer(trainSetup, PmcPopulation::Config{ctx, chainSettingsOf(erptOf(s)), tp, ts.seed, nullptr, erptOf(s).seeds}, uniform, trainStats);
+  PmcPopulation trainer(trainSetup, PmcPopulation::Config{ctx, chainSettingsOf(chainOf(s)), tp, ts.seed, nullptr, chainOf(s).seeds}, uniform, trainStats);
   trainer.run(PoolRounds::all(StratifiedPool{pixels, uint32_t(ts.spp), ts.seed}), p.trainIterations);
   mixture.setRegionTable(trainer.regionSums(), 1.0);
   ps.trainingIterations = pmcStatsOf(trainStats).trainingIterations;
@@ -107,7 +107,7 @@ void trainRegionTable(const Scene& scene, const RenderSettings& s, const StepCon
 StepSettings pmcStepSettings(const RenderSettings& s) {
   // The disk lens and Veach caustic units (sizes from the mixture), the families the path
   // allows (Mixed's), detailed-balance deposits for Balance.
-  StepSettings step = stepSettingsOf(erptOf(s));  // the deposit rule
+  StepSettings step = stepSettingsOf(chainOf(s));  // the deposit rule
   step.strategy = MutationStrategy::Mixed;
   step.lensShape = LensShape::Disk;
   step.causticAngle = CausticAngle::Veach;
@@ -118,9 +118,9 @@ StepSettings pmcStepSettings(const RenderSettings& s) {
 namespace {
 // The summary's energies, from what the render did.
 void summarizeEnergies(RenderStats& stats) {
-  ErptStats& es = erptStatsOf(stats);
+  ChainStats& es = chainStatsOf(stats);
   PmcStats& ps = pmcStatsOf(stats);
-  es.erptSeconds = ps.chainSeconds + ps.resampleSeconds;
+  es.chainSeconds = ps.chainSeconds + ps.resampleSeconds;
   // PMC-ER needs no pilot (its energies come from the pool); e_ave for the statistics is the
   // pool's own mean seed energy, what ERPT's pilot pass estimates.
   es.pilotEnergy = ps.poolUsed > 0 ? ps.poolEnergy / double(ps.poolUsed) : 0;
@@ -144,16 +144,16 @@ int usablePopulation(const RenderSettings& s, size_t availableBytes) {
 
 RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
   const auto start = std::chrono::steady_clock::now();
-  validatePmcSettings(pmcOf(requested), erptOf(requested));
+  validatePmcSettings(pmcOf(requested), chainOf(requested));
   RenderSettings s = requested;
   pmcOf(s).population = usablePopulation(requested, availableMemoryBytes());
   pmcStatsOf(stats).requestedPopulation = uint64_t(pmcOf(requested).population);
   const PmcSettings& p = pmcOf(s);
-  ErptStats& es = erptStatsOf(stats);
+  ChainStats& es = chainStatsOf(stats);
   PmcStats& ps = pmcStatsOf(stats);
 
-  RenderSetup setup(scene, s, seedFilmMode(erptOf(s)));
-  FilmDensity density(setup.filter, s.width, s.height, erptOf(s).seeds == SeedSampler::Bdpt);
+  RenderSetup setup(scene, s, seedFilmMode(chainOf(s)));
+  FilmDensity density(setup.filter, s.width, s.height, chainOf(s).seeds == SeedSampler::Bdpt);
   const StepConfig ctx{MeasureContext{scene, setup.lights, setup.camera, density}, pmcStepSettings(s)};
   const uint32_t pixels = uint32_t(s.width) * uint32_t(s.height);
   PmcMixture mixture(p, s.width, s.height);
@@ -172,7 +172,7 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
     direct = renderDirectPass(scene, s, stats);
   }
 
-  PmcPopulation population(setup, PmcPopulation::Config{ctx, chainSettingsOf(erptOf(s)), p, s.seed, &setup.film, erptOf(s).seeds}, mixture, stats);
+  PmcPopulation population(setup, PmcPopulation::Config{ctx, chainSettingsOf(chainOf(s)), p, s.seed, &setup.film, chainOf(s).seeds}, mixture, stats);
   const StratifiedPool pool{pixels, uint32_t(s.spp), streamKey(s.seed, kPoolStream, 0)};
   const uint32_t rank = uint32_t(s.share.rank), ranks = uint32_t(std::max(1, s.share.ranks));
   SamplePassHooks passes;
@@ -187,7 +187,7 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
   passes.load = [&](ByteReader& r) {
     r.get(es), r.get(ps);
     r.get(stats.samples), r.get(stats.rays), r.get(stats.invalidSamples);
-    const size_t directPixels = erptOf(s).directSamples > 0 ? size_t(pixels) : 0;
+    const size_t directPixels = chainOf(s).directSamples > 0 ? size_t(pixels) : 0;
     r.getVector(direct.pixels, directPixels);
     direct.width = directPixels ? s.width : 0, direct.height = directPixels ? s.height : 0;
     mixture.load(r);
@@ -212,7 +212,7 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
   };
   auto image = [&](int done, std::vector<std::pair<std::string, RgbImage>>* extras) {
     RgbImage shown = redistributionImage(s, setup.film.resolve(double(done)), direct,
-                                         erptOf(s).pmFilterRadius >= 0 ? &population.proposalTally() : nullptr, extras);
+                                         chainOf(s).pmFilterRadius >= 0 ? &population.proposalTally() : nullptr, extras);
     if (extras) addChainMaps(population.tallies(), s.width, s.height, *extras);
     return shown;
   };
@@ -224,7 +224,7 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
   passes.stoppedImage = [&](int done, int, RenderStats& st) {
     st.keptSpp = double(done) + double(population.positionsTaken()) / double(pixels);
     kept = redistributionImage(s, setup.film.resolve(st.keptSpp), direct,
-                               erptOf(s).pmFilterRadius >= 0 ? &population.proposalTally() : nullptr, &st.extraImages);
+                               chainOf(s).pmFilterRadius >= 0 ? &population.proposalTally() : nullptr, &st.extraImages);
     addChainMaps(population.tallies(), s.width, s.height, st.extraImages);
     return kept;
   };
@@ -288,11 +288,11 @@ IntegratorModule pmcErModule() {
       directSamplesOption(), seedsOption()};
   addOptions(m.options, depositOptions());
   m.options.push_back(chainMapsOption());
-  m.validate = [](const RenderSettings& s) { validatePmcSettings(pmcOf(s), erptOf(s)); };
+  m.validate = [](const RenderSettings& s) { validatePmcSettings(pmcOf(s), chainOf(s)); };
   m.render = renderPmcEr;
   m.printSummary = printPmcSummary;
   m.addStats = [](RenderStats& to, const RenderStats& from) {
-    addErptStats(erptStatsOf(to), erptStatsOf(from));  // the chain step's counts
+    addChainStats(chainStatsOf(to), chainStatsOf(from));  // the chain step's counts
     addPmcStats(pmcStatsOf(to), pmcStatsOf(from));
   };
   m.proposalFiltered = true;

@@ -11,7 +11,7 @@ namespace erpt {
 
 // `--integrator pmc-er`: population Monte Carlo energy redistribution (docs/pmc-er.md).
 // `settings` must be resolved. Throws UsageError naming the option for absurd settings.
-void validatePmcSettings(const PmcSettings& settings, const ErptSettings& erpt);
+void validatePmcSettings(const PmcSettings& settings, const ChainOptions& chains);
 RgbImage renderPmcEr(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
 IntegratorModule pmcErModule();
 

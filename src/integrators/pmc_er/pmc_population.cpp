@@ -145,12 +145,12 @@ bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::
   pmc_.meanDeposit = depositSteps_ > 0 ? depositSum_ / double(depositSteps_) : 0;
   if (config_.film) pmc_.steps = depositSteps_;
   for (int k = 0; k < kMutationKindCount; ++k) {
-    erptStatsOf(stats_).proposed[k] = counters_.proposed[k];
-    erptStatsOf(stats_).accepted[k] = counters_.accepted[k];
+    chainStatsOf(stats_).proposed[k] = counters_.proposed[k];
+    chainStatsOf(stats_).accepted[k] = counters_.accepted[k];
   }
-  for (int r = 0; r < kRejectReasonCount; ++r) erptStatsOf(stats_).rejected[r] = counters_.rejected[r];
-  erptStatsOf(stats_).discardedDeposits = filters_.discarded;
-  erptStatsOf(stats_).discardedEnergy = filters_.discardedEnergy;
+  for (int r = 0; r < kRejectReasonCount; ++r) chainStatsOf(stats_).rejected[r] = counters_.rejected[r];
+  chainStatsOf(stats_).discardedDeposits = filters_.discarded;
+  chainStatsOf(stats_).discardedEnergy = filters_.discardedEnergy;
   return true;
 }
 
@@ -371,7 +371,7 @@ void PmcPopulation::iterate(const std::function<void()>& alongside) {
   // Lane thread-seconds over the threads that ran them: about the wall time of each stage.
   const double threads = double(std::max<size_t>(1, std::min(lanes_.size(), workerSlots())));
   for (auto& lane : lanes_) lane->takeTotals(totals, stats_.stages, 1.0 / threads, large_);
-  erptStatsOf(stats_).rays += totals.rays;
+  chainStatsOf(stats_).rays += totals.rays;
   stats_.rays += totals.rays;
   deposited_ += totals.deposited;
   filters_.discarded += totals.discarded;
@@ -416,8 +416,8 @@ void PmcPopulation::runLane(size_t l, int steps) {
 void PmcPopulation::collect(size_t slot, const StepRecord& r) {
   const size_t k = size_t(components_);
   const int w = tracing_.film.width(), h = tracing_.film.height();
-  ++erptStatsOf(stats_).mutations;
-  ++erptStatsOf(stats_).deposits;
+  ++chainStatsOf(stats_).mutations;
+  ++chainStatsOf(stats_).deposits;
   depositSum_ += r.energy;
   ++depositSteps_;
   if (r.kind == uint8_t(MutationKind::None)) return;

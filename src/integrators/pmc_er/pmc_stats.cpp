@@ -44,7 +44,7 @@ void addPmcStats(PmcStats& to, const PmcStats& from) {
 
 void printPmcSummary(const RenderStats& stats) {
   const PmcStats& p = pmcStatsOf(stats);
-  const ErptStats& e = erptStatsOf(stats);
+  const ChainStats& e = chainStatsOf(stats);
   std::fprintf(stderr,
                "pmc-er: %llu iterations (%llu draining) + %llu training, population %llu; pool %llu of %llu "
                "positions, %llu candidates, %llu seeds in place\n",

@@ -39,7 +39,7 @@ double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(
 class DirectChunks {
  public:
   DirectChunks(const Scene& scene, const RenderSettings& s) : scene_(scene), s_(s) {
-    const int samples = erptOf(s).directSamples;
+    const int samples = chainOf(s).directSamples;
     perRound_ = samples > 0 ? double(samples) / double(s.spp) : 0.0;
   }
   void keepUpWith(double rounds, bool last, RenderStats& stats) {
@@ -48,7 +48,7 @@ class DirectChunks {
     if (target <= done_ || (!last && target < 2 * done_)) return;
     RenderSettings chunk = s_;
     chunk.seed = streamKey(s_.seed, kDirectChunkStream, uint64_t(chunks_++));
-    erptOf(chunk).directSamples = target - done_;
+    chainOf(chunk).directSamples = target - done_;
     const Clock::time_point t = Clock::now();
     const RgbImage img = renderDirectPass(scene_, chunk, stats);
     seconds_ += secondsSince(t);
@@ -130,7 +130,7 @@ RgbImage renderPmcForTime(const Scene& scene, const RenderSettings& s, const Pmc
   const PmcSettings& p = pmcOf(s);
   const size_t pixels = size_t(s.width) * size_t(s.height);
   PmcPopulation population(parts.setup,
-                           PmcPopulation::Config{parts.ctx, chainSettingsOf(erptOf(s)), p, s.seed, &parts.setup.film, erptOf(s).seeds},
+                           PmcPopulation::Config{parts.ctx, chainSettingsOf(chainOf(s)), p, s.seed, &parts.setup.film, chainOf(s).seeds},
                            parts.mixture, stats);
   const StratifiedPool pool{uint32_t(pixels), kOpenEndedRounds, streamKey(s.seed, kPoolStream, 0)};
   DirectChunks direct(scene, s);
@@ -163,7 +163,7 @@ RgbImage renderPmcForTime(const Scene& scene, const RenderSettings& s, const Pmc
   direct.keepUpWith(rounds, true, stats);
   stats.extraImages.emplace_back("strategy", population.strategyImage());
   const RgbImage image = redistributionImage(s, parts.setup.film.resolve(rounds), direct.image(),
-                                             erptOf(s).pmFilterRadius >= 0 ? &population.proposalTally() : nullptr,
+                                             chainOf(s).pmFilterRadius >= 0 ? &population.proposalTally() : nullptr,
                                              &stats.extraImages);
   addChainMaps(population.tallies(), s.width, s.height, stats.extraImages);
   stats.spp = int(std::lround(rounds));  // whole rounds

@@ -23,7 +23,7 @@ RenderSettings withBdptSeeds(const std::string& integrator, int spp) {
   RenderSettings s;
   s.integrator = integrator;
   s.spp = spp;
-  erptOf(s).seeds = SeedSampler::Bdpt;
+  chainOf(s).seeds = SeedSampler::Bdpt;
   return s;
 }
 
@@ -34,8 +34,8 @@ Scene defaultScene() { return loadScene(test::sourceDir() + "/scenes/default/sce
 // |z| 2.66; with light-tracing seeds put at their sample's film position instead: 7557.
 TEST(StatisticalBdptSeeds, ErptMatchesPathTracerBlockByBlock) {
   RenderSettings s = withBdptSeeds("erpt", 4);
-  erptOf(s).mutationsPerPixel = 200;
-  erptOf(s).directSamples = -1;
+  chainOf(s).mutationsPerPixel = 200;
+  chainOf(s).directSamples = -1;
   test::expectMatchesPathTracerBlockByBlock(defaultScene(), s, 12, 44000);
 }
 
@@ -43,8 +43,8 @@ TEST(StatisticalBdptSeeds, ErptMatchesPathTracerBlockByBlock) {
 // caustic scene whose floor is lit mostly through glass. Measured: 1.19, 3.17.
 TEST(StatisticalBdptSeeds, ErptWithDirectPassMatchesPathTracerOnCausticsBlockByBlock) {
   RenderSettings s = withBdptSeeds("erpt", 4);
-  erptOf(s).mutationsPerPixel = 200;
-  erptOf(s).directSamples = 4;
+  chainOf(s).mutationsPerPixel = 200;
+  chainOf(s).directSamples = 4;
   test::expectMatchesPathTracerBlockByBlock(loadScene(test::sourceDir() + "/tests/data/caustic-scene.xml"), s, 16,
                                             44100);
 }
@@ -54,7 +54,7 @@ TEST(StatisticalBdptSeeds, ErptWithDirectPassMatchesPathTracerOnCausticsBlockByB
 TEST(StatisticalBdptSeeds, PmcErMatchesPathTracerBlockByBlock) {
   RenderSettings s = withBdptSeeds("pmc-er", 8);
   pmcOf(s).population = 1000;
-  erptOf(s).directSamples = 4;
+  chainOf(s).directSamples = 4;
   test::expectMatchesPathTracerBlockByBlock(test::cornellBox(), s, 16, 44200);
 }
 
@@ -68,8 +68,8 @@ TEST(StatisticalBdptSeeds, PmcErMatchesPathTracerBlockByBlock) {
 // image scales with its bootstrap's b. Measured: 0.92, 2.62 with a 4 spp bootstrap.
 TEST(StatisticalBdptSeeds, MltLargeStepsAloneMatchPathTracerBlockByBlock) {
   RenderSettings s = withBdptSeeds("mlt", 1);
-  erptOf(s).mutationsPerPixel = 128;
-  erptOf(s).directSamples = -1;
+  chainOf(s).mutationsPerPixel = 128;
+  chainOf(s).directSamples = -1;
   mltOf(s).largeStepProbability = 1;
   mltOf(s).bootstrapSpp = 4;
   test::expectMatchesPathTracerBlockByBlock(test::cornellBox(), s, 24, 44300);

@@ -18,8 +18,8 @@ namespace {
 
 // ERPT with every path by ERPT (the paper's configuration: no separate direct pass) and
 // `mutationsPerPixel` mutations per pixel.
-ErptSettings everyPathByErpt(int mutationsPerPixel) {
-  ErptSettings erpt;
+ChainOptions everyPathByErpt(int mutationsPerPixel) {
+  ChainOptions erpt;
   erpt.mutationsPerPixel = mutationsPerPixel;
   erpt.directSamples = -1;
   return erpt;
@@ -27,11 +27,11 @@ ErptSettings everyPathByErpt(int mutationsPerPixel) {
 
 // Sixteen ERPT renders (64x64, box filter, `spp` seeds per pixel, `erpt` options, seeds from
 // `seed`) against 16 path-traced ones of 128 spp, per 8x8 block (support/block_bias.h).
-void expectErptMatchesPathTracerBlockByBlock(const Scene& scene, int spp, const ErptSettings& erpt, uint64_t seed) {
+void expectErptMatchesPathTracerBlockByBlock(const Scene& scene, int spp, const ChainOptions& erpt, uint64_t seed) {
   RenderSettings s;
   s.integrator = "erpt";
   s.spp = spp;
-  erptOf(s) = erpt;
+  chainOf(s) = erpt;
   test::expectMatchesPathTracerBlockByBlock(scene, s, 16, seed);
 }
 
@@ -44,7 +44,7 @@ void expectErptMatchesPathTracerBlockByBlock(const Scene& scene, int spp, const 
 // worst |z| 7.0 per 8x8 block (the diffuse Cornell box: 1.1 and 2.6), with the image mean
 // right. The paper's configuration: ERPT does direct light too.
 TEST(StatisticalErpt, PlasticBoxMatchesPathTracerBlockByBlock) {
-  ErptSettings erpt = everyPathByErpt(800);
+  ChainOptions erpt = everyPathByErpt(800);
   expectErptMatchesPathTracerBlockByBlock(loadScene(test::sourceDir() + "/tests/data/plastic-box.xml"), 32, erpt, 1000);
 }
 
@@ -57,7 +57,7 @@ TEST(StatisticalErpt, PlasticBoxMatchesPathTracerBlockByBlock) {
 // under the bounds, since caustic perturbations carry a small part of this image): the
 // detailed-balance and caustic-only stationarity tests catch that (both red with it dropped).
 TEST(StatisticalErpt, DiskLensAndVeachCausticMatchPathTracerBlockByBlock) {
-  ErptSettings erpt = everyPathByErpt(400);
+  ChainOptions erpt = everyPathByErpt(400);
   erpt.lensShape = LensShape::Disk;
   erpt.causticAngle = CausticAngle::Veach;
   expectErptMatchesPathTracerBlockByBlock(loadScene(test::sourceDir() + "/scenes/default/scene.xml"), 16, erpt, 3000);
@@ -68,7 +68,7 @@ TEST(StatisticalErpt, DiskLensAndVeachCausticMatchPathTracerBlockByBlock) {
 // spheres, changes path lengths, replaces the light point and moves the film position. A
 // wrong density ratio moves energy between path lengths and regions.
 TEST(StatisticalErpt, BidirectionalMutationMatchesPathTracerBlockByBlock) {
-  ErptSettings erpt = everyPathByErpt(400);
+  ChainOptions erpt = everyPathByErpt(400);
   erpt.bidirectionalMutation = 0.5f;
   expectErptMatchesPathTracerBlockByBlock(loadScene(test::sourceDir() + "/scenes/default/scene.xml"), 16, erpt, 21000);
 }
@@ -94,7 +94,7 @@ TEST(StatisticalErpt, ThinLensDepthOfFieldMatchesPathTracerBlockByBlock) {
 TEST(StatisticalErpt, SphereLightAndGlassSphereMatchPathTracerBlockByBlock) {
   const Scene scene = loadScene(test::sourceDir() + "/tests/data/sphere-lights.xml");
   ASSERT_EQ(scene.spheres.count(), 3u);
-  ErptSettings erpt = everyPathByErpt(400);
+  ChainOptions erpt = everyPathByErpt(400);
   expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 5000);
 }
 
@@ -105,7 +105,7 @@ TEST(StatisticalErpt, RoughGlassAndPhongMatchPathTracerBlockByBlock) {
   const Scene scene = loadScene(test::sourceDir() + "/tests/data/rough-glass.xml");
   ASSERT_EQ(scene.materials[scene.spheres.material[0]].kind, BsdfKind::RoughDielectric);
   ASSERT_EQ(scene.materials[scene.spheres.material[2]].kind, BsdfKind::Phong);
-  ErptSettings erpt = everyPathByErpt(400);
+  ChainOptions erpt = everyPathByErpt(400);
   expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 7000);
 }
 
@@ -116,7 +116,7 @@ TEST(StatisticalErpt, SpotLightCausticMatchesPathTracerBlockByBlock) {
   const Scene scene = loadScene(test::sourceDir() + "/tests/data/spot-caustic.xml");
   ASSERT_EQ(scene.emitters.size(), 1u);
   ASSERT_TRUE(scene.emitters[0].spot);
-  ErptSettings erpt = everyPathByErpt(200);  // enough: leaving the falloff out of f gives mean z^2 ~8600
+  ChainOptions erpt = everyPathByErpt(200);  // enough: leaving the falloff out of f gives mean z^2 ~8600
   expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 9000);
 }
 
@@ -124,16 +124,16 @@ TEST(StatisticalErpt, SpotLightCausticMatchesPathTracerBlockByBlock) {
 // the area light's seeds start chains; the sum must still be the path tracer's image.
 TEST(StatisticalErpt, DirectionalLightSeedsInPlaceMatchPathTracerBlockByBlock) {
   const Scene scene = loadScene(test::sourceDir() + "/tests/data/directional.xml");
-  ErptSettings erpt = everyPathByErpt(200);
+  ChainOptions erpt = everyPathByErpt(200);
   {
     RenderSettings s;
     s.integrator = "erpt";
     s.spp = 4;
-    erptOf(s) = erpt;
+    chainOf(s) = erpt;
     RenderStats stats;
     render(scene, s, stats);
-    EXPECT_GT(erptStatsOf(stats).inPlace[kInPlaceDirectionalLight], 1000u);
-    EXPECT_GT(erptStatsOf(stats).chains, 1000u);
+    EXPECT_GT(chainStatsOf(stats).inPlace[kInPlaceDirectionalLight], 1000u);
+    EXPECT_GT(chainStatsOf(stats).chains, 1000u);
   }
   expectErptMatchesPathTracerBlockByBlock(scene, 16, erpt, 11000);
 }

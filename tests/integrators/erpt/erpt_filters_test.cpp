@@ -110,7 +110,7 @@ RenderSettings smallErpt(int size, int spp) {
   s.width = s.height = size;
   s.spp = spp;
   s.seed = 3;
-  erptOf(s).mutationsPerPixel = 20;
+  chainOf(s).mutationsPerPixel = 20;
   erptOf(s).chainLength = 20;
   return s;
 }
@@ -127,18 +127,18 @@ bool sameImage(const RgbImage& a, const RgbImage& b) {
 // alone: its "raw" image is bit for bit the unfiltered render, and the result differs from it.
 // The consecutive-sample filter changes the image only when on.
 TEST(NoiseFilters, OffByDefaultAndTheUnfilteredImageIsKept) {
-  const ErptSettings defaults;
+  const ChainOptions defaults;
   EXPECT_EQ(defaults.pmFilterRadius, -1);
   EXPECT_EQ(defaults.maxConsecutive, 0);
-  EXPECT_EQ(int(defaults.flow), int(FlowRule::EqualDeposition));
+  EXPECT_EQ(int(ErptSettings{}.flow), int(FlowRule::EqualDeposition));
   const Scene scene = loadScene(test::sharedScenesDir() + "/cornell-box/scene.xml");
   RenderStats plainStats, pmStats, consecutiveStats;
   const RenderSettings plain = smallErpt(32, 4);
   const RgbImage unfiltered = render(scene, plain, plainStats);
   EXPECT_TRUE(plainStats.extraImages.empty());
-  EXPECT_EQ(erptStatsOf(plainStats).discardedDeposits, 0u);
+  EXPECT_EQ(chainStatsOf(plainStats).discardedDeposits, 0u);
   RenderSettings pm = plain;
-  erptOf(pm).pmFilterRadius = 3;
+  chainOf(pm).pmFilterRadius = 3;
   const RgbImage filtered = render(scene, pm, pmStats);
   auto extra = [&](const std::string& name) -> const RgbImage& {
     for (const auto& [n, img] : pmStats.extraImages)
@@ -152,12 +152,12 @@ TEST(NoiseFilters, OffByDefaultAndTheUnfilteredImageIsKept) {
   EXPECT_TRUE(sameImage(filtered, proposalFilteredImage(extra("raw"), extra("chains"), extra("proposals"), 3)));
   double proposals = 0;
   for (const Color& c : extra("proposals").pixels) proposals += c.x;
-  EXPECT_GT(proposals, 0.5 * double(erptStatsOf(pmStats).mutations));  // most proposals are complete paths
-  EXPECT_LE(proposals, double(erptStatsOf(pmStats).mutations));
+  EXPECT_GT(proposals, 0.5 * double(chainStatsOf(pmStats).mutations));  // most proposals are complete paths
+  EXPECT_LE(proposals, double(chainStatsOf(pmStats).mutations));
   RenderSettings consecutive = plain;
-  erptOf(consecutive).maxConsecutive = 2;
+  chainOf(consecutive).maxConsecutive = 2;
   const RgbImage capped = render(scene, consecutive, consecutiveStats);
-  EXPECT_GT(erptStatsOf(consecutiveStats).discardedDeposits, 0u);
+  EXPECT_GT(chainStatsOf(consecutiveStats).discardedDeposits, 0u);
   EXPECT_FALSE(sameImage(capped, unfiltered));
   EXPECT_TRUE(sameImage(render(scene, plain, plainStats), unfiltered));
 }
@@ -204,13 +204,13 @@ TEST(StatisticalErpt, DetailedBalanceFlowIsUnbiased) {
   s.filter = FilterKind::Box;
   erptOf(s).flow = FlowRule::DetailedBalance;
   erptOf(s).chainLength = 8;
-  erptOf(s).directSamples = -1;
+  chainOf(s).directSamples = -1;
   RenderStats stats;
   const RgbImage img = render(scene, s, stats);
   EXPECT_EQ(stats.invalidSamples, 0u);
   uint64_t inPlace = 0;
-  for (uint64_t n : erptStatsOf(stats).inPlace) inPlace += n;
-  EXPECT_EQ(erptStatsOf(stats).chains + inPlace, erptStatsOf(stats).seeds);  // one per seed, but those deposited in place
+  for (uint64_t n : chainStatsOf(stats).inPlace) inPlace += n;
+  EXPECT_EQ(chainStatsOf(stats).chains + inPlace, chainStatsOf(stats).seeds);  // one per seed, but those deposited in place
   const Color m = test::meanOf(img), r = test::meanOf(tungsten);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c] / r[c], 1.0, 0.01) << "channel " << c;
   std::printf("means %.4f %.4f %.4f vs %.4f %.4f %.4f, relMSE vs 128 reference %.3g\n", m.x, m.y, m.z, r.x, r.y, r.z,

@@ -36,17 +36,17 @@ TEST(ErptInPlace, NoDepositionEnergyDepositsEverySeedWhereItIs) {
   RenderStats pathStats;
   const RgbImage path = render(scene, s, pathStats);
   s.integrator = "erpt";
-  erptOf(s).directSamples = -1;
+  chainOf(s).directSamples = -1;
   RenderStats stats;
   // As if the pilot pass had measured e_ave = 0.
   const RgbImage erpt = renderErptWith(scene, resolveSettings(scene, s), stats, ErptEnergies{0, 0});
-  EXPECT_EQ(erptStatsOf(stats).depositEnergy, 0.0);
-  EXPECT_EQ(erptStatsOf(stats).chains, 0u);
-  ASSERT_GT(erptStatsOf(stats).seeds, 100u);
-  EXPECT_EQ(erptStatsOf(stats).inPlace[kInPlaceNoDepositEnergy] +
-                erptStatsOf(stats).inPlace[kInPlaceZeroContribution] + erptStatsOf(stats).inPlace[kInPlaceNoMutation],
-            erptStatsOf(stats).seeds);
-  EXPECT_GT(erptStatsOf(stats).inPlace[kInPlaceNoDepositEnergy], erptStatsOf(stats).seeds * 9 / 10);
+  EXPECT_EQ(chainStatsOf(stats).depositEnergy, 0.0);
+  EXPECT_EQ(chainStatsOf(stats).chains, 0u);
+  ASSERT_GT(chainStatsOf(stats).seeds, 100u);
+  EXPECT_EQ(chainStatsOf(stats).inPlace[kInPlaceNoDepositEnergy] +
+                chainStatsOf(stats).inPlace[kInPlaceZeroContribution] + chainStatsOf(stats).inPlace[kInPlaceNoMutation],
+            chainStatsOf(stats).seeds);
+  EXPECT_GT(chainStatsOf(stats).inPlace[kInPlaceNoDepositEnergy], chainStatsOf(stats).seeds * 9 / 10);
   double sumPath = 0, sumErpt = 0;
   for (size_t i = 0; i < path.pixels.size(); ++i)
     for (int c = 0; c < 3; ++c) {
@@ -63,7 +63,7 @@ TEST(ErptInPlace, NoDepositionEnergyDepositsEverySeedWhereItIs) {
 TEST(ErptInPlace, ChainCountsAreCappedWithTheSameTotalEnergy) {
   ErptWorld w(cornell(), 16, 1, FilterKind::Box);
   Film film(w.width, w.height);
-  ErptStats stats;
+  ChainStats stats;
   StageTimes times;
   StepConfig ctx = w.stepContext(MutationStrategy::Paper);
   ChainSettings lanes;
@@ -111,7 +111,7 @@ TEST(ErptInPlace, SeedWithZeroContributionIsDepositedInPlace) {
   one.vertices.ngY[2] = -one.vertices.ngY[2];
   one.vertices.ngZ[2] = -one.vertices.ngZ[2];
   Film film(w.width, w.height);
-  ErptStats stats;
+  ChainStats stats;
   StageTimes times;
   StepConfig ctx = w.stepContext(MutationStrategy::LensOnly);
   ChainSettings lanes;

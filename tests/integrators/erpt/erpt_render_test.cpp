@@ -38,15 +38,15 @@ RgbImage renderErptImage(const Scene& scene, const ErptRun& r, RenderStats* stat
   if (r.size > 0) s.width = s.height = r.size;
   s.filterSet = true;
   s.filter = r.filter;
-  erptOf(s).mutationsPerPixel = r.mutations;
+  chainOf(s).mutationsPerPixel = r.mutations;
   erptOf(s).chainLength = r.chainLength;
-  erptOf(s).directSamples = r.directSamples;
-  erptOf(s).strategy = r.strategy;
-  erptOf(s).lensShape = r.lensShape;
-  erptOf(s).causticAngle = r.causticAngle;
-  erptOf(s).expectedDeposit = r.expected;
-  erptOf(s).maxConsecutive = r.maxConsecutive;
-  erptOf(s).pmFilterRadius = r.pmFilterRadius;
+  chainOf(s).directSamples = r.directSamples;
+  chainOf(s).strategy = r.strategy;
+  chainOf(s).lensShape = r.lensShape;
+  chainOf(s).causticAngle = r.causticAngle;
+  chainOf(s).expectedDeposit = r.expected;
+  chainOf(s).maxConsecutive = r.maxConsecutive;
+  chainOf(s).pmFilterRadius = r.pmFilterRadius;
   RenderStats stats;
   RgbImage img = render(scene, s, stats);
   EXPECT_EQ(stats.invalidSamples, 0u);
@@ -163,11 +163,11 @@ void expectStationary(MutationStrategy strategy, double bound, LensShape shape =
     RenderStats stats;
     const RgbImage img = renderErptImage(scene, r, &stats);
     uint64_t moved = 0;
-    for (uint64_t a : erptStatsOf(stats).accepted) moved += a;
-    EXPECT_GT(moved, erptStatsOf(stats).mutations / 3);
+    for (uint64_t a : chainStatsOf(stats).accepted) moved += a;
+    EXPECT_GT(moved, chainStatsOf(stats).mutations / 3);
     errors[level] = blockError(img, ref);
     std::printf("%d spp, %d mutations/pixel: %.1f%% accepted, block error %.5f\n", r.spp, r.mutations,
-                100.0 * double(moved) / double(erptStatsOf(stats).mutations), errors[level]);
+                100.0 * double(moved) / double(chainStatsOf(stats).mutations), errors[level]);
   }
   std::printf("ratio %.2f\n", errors[0] / errors[1]);
   // Noise alone halves the typical error for 4x the samples (measured: 2.3x lens, 2.2x

@@ -25,7 +25,7 @@ RenderSettings mltSettings(int mutationsPerPixel) {
   RenderSettings s;
   s.integrator = "mlt";
   s.spp = 1;
-  erptOf(s).mutationsPerPixel = mutationsPerPixel;
+  chainOf(s).mutationsPerPixel = mutationsPerPixel;
   return s;
 }
 
@@ -49,21 +49,21 @@ RenderStats expectSameImageForAnyThreadCount(RenderSettings s) {
 TEST(Mlt, SameImageForAnyThreadCount) {
   RenderSettings s = mltSettings(16);
   s.width = s.height = 32;
-  erptOf(s).directSamples = 2;
+  chainOf(s).directSamples = 2;
   mltOf(s).chains = 300;
   mltOf(s).bootstrapSpp = 4;
   const RenderStats one = expectSameImageForAnyThreadCount(s);
   // Both kinds of move happened, and the chains did all the work asked of them.
-  EXPECT_GT(erptStatsOf(one).accepted[size_t(MutationKind::LargeStep)], 0u);
-  EXPECT_GT(erptStatsOf(one).accepted[size_t(MutationKind::Lens)], 0u);
+  EXPECT_GT(chainStatsOf(one).accepted[size_t(MutationKind::LargeStep)], 0u);
+  EXPECT_GT(chainStatsOf(one).accepted[size_t(MutationKind::Lens)], 0u);
   EXPECT_EQ(mltStatsOf(one).chains, 300u);
-  EXPECT_EQ(erptStatsOf(one).mutations, mltStatsOf(one).chains * mltStatsOf(one).chainLength);
+  EXPECT_EQ(chainStatsOf(one).mutations, mltStatsOf(one).chains * mltStatsOf(one).chainLength);
 
   s.width = 45;
   s.height = 33;
-  erptOf(s).bidirectionalMutation = 0.5f;
+  chainOf(s).bidirectionalMutation = 0.5f;
   const RenderStats bidirectional = expectSameImageForAnyThreadCount(s);
-  EXPECT_GT(erptStatsOf(bidirectional).accepted[size_t(MutationKind::Bidirectional)], 0u);
+  EXPECT_GT(chainStatsOf(bidirectional).accepted[size_t(MutationKind::Bidirectional)], 0u);
 }
 
 // The Cornell box at 128x128 (box filter) with MLT's defaults: channel means within 1% of
@@ -77,12 +77,12 @@ TEST(StatisticalMlt, CornellBoxMatchesReferences) {
   low.filter = FilterKind::Box;
   low.seed = 1;
   RenderSettings high = low;
-  erptOf(high).mutationsPerPixel = 128;
+  chainOf(high).mutationsPerPixel = 128;
   high.seed = 2;
   RenderStats stats;
   const RgbImage a = renderImage(scene, low), b = renderImage(scene, high, &stats);
   test::expectCornellBoxConverges(a, b, 2.5, 6.0);
-  EXPECT_GT(erptStatsOf(stats).accepted[size_t(MutationKind::LargeStep)], 0u);
+  EXPECT_GT(chainStatsOf(stats).accepted[size_t(MutationKind::LargeStep)], 0u);
 }
 
 // Block by block (support/block_bias.h): 16 MLT renders of 64x64 against 16 path-traced ones
@@ -93,7 +93,7 @@ TEST(StatisticalMlt, CornellBoxMatchesReferences) {
 // 16 and 24 renders, 0.88 for 48); with 16 spp measured 0.97, worst |z| 2.40.
 TEST(StatisticalMlt, DefaultSceneMatchesPathTracerBlockByBlock) {
   RenderSettings s = mltSettings(128);
-  erptOf(s).directSamples = 8;
+  chainOf(s).directSamples = 8;
   mltOf(s).bootstrapSpp = 16;
   test::expectMatchesPathTracerBlockByBlock(defaultScene(), s, 16, 7000);
 }
@@ -106,7 +106,7 @@ TEST(StatisticalMlt, DefaultSceneMatchesPathTracerBlockByBlock) {
 // take large steps stay on a path for many steps and their block means are heavy-tailed.
 TEST(StatisticalMlt, LargeStepsAloneMatchPathTracerBlockByBlock) {
   RenderSettings s = mltSettings(128);
-  erptOf(s).directSamples = -1;
+  chainOf(s).directSamples = -1;
   mltOf(s).largeStepProbability = 1;
   mltOf(s).bootstrapSpp = 16;
   test::expectMatchesPathTracerBlockByBlock(test::cornellBox(), s, 24, 7100);
@@ -118,8 +118,8 @@ TEST(StatisticalMlt, LargeStepsAloneMatchPathTracerBlockByBlock) {
 // acceptance ratio is (docs/bidirectional-mutation.md).
 TEST(StatisticalMlt, BidirectionalMutationAloneMatchesPathTracerBlockByBlock) {
   RenderSettings s = mltSettings(128);
-  erptOf(s).directSamples = -1;
-  erptOf(s).bidirectionalMutation = 1;
+  chainOf(s).directSamples = -1;
+  chainOf(s).bidirectionalMutation = 1;
   mltOf(s).largeStepProbability = 0;
   mltOf(s).bootstrapSpp = 16;
   test::expectMatchesPathTracerBlockByBlock(test::cornellBox(), s, 16, 7400);
@@ -129,8 +129,8 @@ TEST(StatisticalMlt, BidirectionalMutationAloneMatchesPathTracerBlockByBlock) {
 // MLT's large steps and perturbations beside the bidirectional mutation.
 TEST(StatisticalMlt, DefaultSceneWithBidirectionalMutationMatchesPathTracerBlockByBlock) {
   RenderSettings s = mltSettings(128);
-  erptOf(s).directSamples = 8;
-  erptOf(s).bidirectionalMutation = 0.5f;
+  chainOf(s).directSamples = 8;
+  chainOf(s).bidirectionalMutation = 0.5f;
   mltOf(s).bootstrapSpp = 16;
   test::expectMatchesPathTracerBlockByBlock(defaultScene(), s, 16, 7500);
 }
@@ -140,7 +140,7 @@ TEST(StatisticalMlt, DefaultSceneWithBidirectionalMutationMatchesPathTracerBlock
 // bootstrap's in-place deposits, exactly once. Measured: mean z^2 0.62, worst |z| 1.66.
 TEST(StatisticalMlt, PlasticBoxMatchesPathTracerBlockByBlock) {
   RenderSettings s = mltSettings(128);
-  erptOf(s).directSamples = -1;
+  chainOf(s).directSamples = -1;
   mltOf(s).bootstrapSpp = 16;
   test::expectMatchesPathTracerBlockByBlock(loadScene(test::sourceDir() + "/tests/data/plastic-box.xml"), s, 16, 7200);
 }

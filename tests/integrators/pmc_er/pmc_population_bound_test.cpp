@@ -49,7 +49,7 @@ TEST(PmcPopulationBound, RefusesWhatWouldNotFitBeforeAllocating) {
 TEST(PmcPopulationBound, HugePopulationOnATinyImageRendersWithThePool) {
   Scene scene = loadScene(test::sourceDir() + "/scenes/default/scene.xml");
   RenderSettings s = pmcAt(8, 8, 1, 10000000);
-  erptOf(s).directSamples = 2;
+  chainOf(s).directSamples = 2;
   erptOf(s).pilotSpp = 1;
   RenderStats stats;
   const RgbImage image = render(scene, resolveSettings(scene, s), stats);

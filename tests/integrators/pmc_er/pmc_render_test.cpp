@@ -25,7 +25,7 @@ RenderSettings pmcSettings(int spp, PmcFlow flow, PmcAdapt adapt, int population
   pmcOf(s).flow = flow;
   pmcOf(s).adapt = adapt;
   pmcOf(s).population = population;
-  erptOf(s).directSamples = -1;  // the paper's configuration: every path by PMC-ER
+  chainOf(s).directSamples = -1;  // the paper's configuration: every path by PMC-ER
   return s;
 }
 
@@ -98,7 +98,7 @@ TEST(Pmc, SameImageForAnyThreadCount) {
     for (PmcAdapt adapt : {PmcAdapt::Region, PmcAdapt::Member}) {
       RenderSettings s = pmcSettings(2, flow, adapt, 1300);
       s.width = s.height = 32;
-      erptOf(s).directSamples = 2;
+      chainOf(s).directSamples = 2;
       s.threads = 1;
       const RgbImage a = renderImage(scene, s);
       s.threads = 2;

@@ -32,7 +32,7 @@ RenderSettings pmcSettings(int width, int height, int spp, int population) {
   s.seed = 17;
   pmcOf(s).population = population;
   pmcOf(s).adapt = PmcAdapt::Off;
-  erptOf(s).directSamples = -1;
+  chainOf(s).directSamples = -1;
   return s;
 }
 
@@ -44,7 +44,7 @@ std::vector<float> populationFilm(const Scene& scene, const RenderSettings& s, c
   const StepConfig ctx{MeasureContext{scene, setup.lights, setup.camera, density}, pmcStepSettings(s)};
   PmcMixture mixture(pmcOf(s), s.width, s.height);
   RenderStats stats;
-  PmcPopulation population(setup, PmcPopulation::Config{ctx, chainSettingsOf(erptOf(s)), pmcOf(s), s.seed, &setup.film},
+  PmcPopulation population(setup, PmcPopulation::Config{ctx, chainSettingsOf(chainOf(s)), pmcOf(s), s.seed, &setup.film},
                            mixture, stats);
   EXPECT_TRUE(population.run(rounds, -1, {}, nullptr, allowed));
   const RgbImage image = setup.film.resolve(1.0);
@@ -97,7 +97,7 @@ TEST(PmcTimeBudget, ABudgetShorterThanOneRoundStillTakesRoundZero) {
 // enough for several rounds in the slowest build (a Release build makes some 40 in 1.5 s).
 TEST(StatisticalPmcTimeBudget, WholeRoundsAndTheSplitDirectPassAreUnbiasedBlockByBlock) {
   RenderSettings s = pmcSettings(0, 0, 2, 600);
-  erptOf(s).directSamples = 4;
+  chainOf(s).directSamples = 4;
   s.timeBudget = 1.5;
   test::expectMatchesPathTracerBlockByBlock(defaultScene(), s, 16, 7200);
 }
