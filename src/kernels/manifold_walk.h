@@ -1,0 +1,92 @@
+// Manifold exploration's walk along a specular chain (Jakob and Marschner 2012, sections 4
+// and 5; the derivation is in docs/manifold.md).
+//
+// A chain x_0 .. x_n has specular vertices x_1 .. x_{n-1} between two endpoints. Each specular
+// vertex constrains its neighbours through the generalised half vector
+//     h_i = eta(w_in) w_in + eta(w_out) w_out,   w = unit directions from x_i to x_{i-1}, x_{i+1},
+// eta(w) the index of refraction on w's side of the surface: the law of reflection and Snell's
+// law both say that h_i is along the normal, i.e. that its tangential part c_i = (h_i . s_i,
+// h_i . t_i) / |h_i| is zero. The paths that satisfy every c_i = 0 form a manifold; moving the
+// endpoint x_n along its surface moves the specular vertices along it.
+//
+// The walk keeps x_0 fixed and brings x_n to a target: from the chain's constraint Jacobian
+// (block tridiagonal, 2x2 blocks per vertex pair) it predicts the specular vertices' tangent
+// moves for the endpoint's move, aims from x_0 at the predicted x_1 and retraces the chain by
+// the laws of reflection and refraction (so every state it reaches is on the manifold), and
+// takes the step if the endpoint came closer to the target; otherwise it halves the step.
+//
+// Everything here is per chain and in double precision; the retracing is the caller's
+// (ManifoldTracer): one ray per vertex of the chain.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace erpt {
+
+struct DVec3 {
+  double x = 0, y = 0, z = 0;
+};
+inline DVec3 operator+(DVec3 a, DVec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline DVec3 operator-(DVec3 a, DVec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline DVec3 operator*(DVec3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+inline DVec3 operator*(double s, DVec3 a) { return a * s; }
+inline double dot(DVec3 a, DVec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline DVec3 cross(DVec3 a, DVec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+
+// A vertex of a chain as the walk sees it: where it is, how its surface and normal turn there,
+// and what it does to light.
+struct ManifoldVertex {
+  DVec3 p;           // position
+  DVec3 dpdu, dpdv;  // surface tangents (any two independent ones)
+  DVec3 n;           // unit shading normal
+  DVec3 dndu, dndv;  // derivatives of the shading normal along dpdu and dpdv (its curvature)
+  // Specular vertices: the index of refraction on the side the normal points away from (the
+  // exterior's is 1); and whether the chain reflects or refracts here.
+  double eta = 1;
+  bool reflect = true;
+  uint32_t surface = 0;  // which surface (a shape): a retraced chain must meet the same ones
+};
+
+// The tangential part of the generalised half vector at the chain's specular vertex i
+// (1 <= i < n): zero on the manifold.
+void manifoldConstraint(const std::vector<ManifoldVertex>& chain, int i, double c[2]);
+
+// The 2x2 blocks of constraint i's derivatives with respect to the (u, v) moves
+// x + u dpdu + v dpdv of its vertex's neighbours and itself: d c_i / d x_{i-1} (a), d x_i (b),
+// d x_{i+1} (c), each row-major [dc0/du, dc0/dv, dc1/du, dc1/dv]. Exact first derivatives
+// (forward-mode automatic differentiation over the same formula as manifoldConstraint).
+void manifoldConstraintBlocks(const std::vector<ManifoldVertex>& chain, int i, double a[4], double b[4], double c[4]);
+
+// The moves (du, dv) of the specular vertices x_1 .. x_{n-1} that keep every constraint at
+// first order when the endpoint x_n moves by (du_n, dv_n) along its surface and x_0 stays:
+// the block tridiagonal solve of the paper. False when the system is singular there.
+bool manifoldTangentMoves(const std::vector<ManifoldVertex>& chain, const double endpointMove[2],
+                          std::vector<double>& moves);
+
+// Retraces a chain: from `origin`, a ray along `direction`; at every specular vertex the
+// chain's interaction (reflection, or refraction with its eta) gives the next ray. Fills the
+// vertices hit after the origin (chain order) and returns false if a ray missed, hit another
+// surface than `surfaces` names in order, or found total internal reflection where the chain
+// refracts. The caller traces the rays (a ray caster, or the tracer's streams).
+class ManifoldTracer {
+ public:
+  virtual ~ManifoldTracer() = default;
+  // The first surface point along the ray, or false.
+  virtual bool intersect(DVec3 origin, DVec3 direction, ManifoldVertex& hit) const = 0;
+};
+bool retraceChain(const ManifoldTracer& tracer, const std::vector<ManifoldVertex>& chain, DVec3 direction,
+                  std::vector<ManifoldVertex>& out);
+
+struct ManifoldWalkResult {
+  bool converged = false;
+  int iterations = 0;  // Newton steps taken (accepted or halved)
+  double distance = 0; // |x_n - target| at the end
+};
+// Walks `chain` (on the manifold) until its endpoint is within `tolerance` of `target`, a point
+// on the endpoint's surface near it, in at most `maxIterations` steps. On success the chain
+// holds the new path.
+ManifoldWalkResult manifoldWalk(const ManifoldTracer& tracer, std::vector<ManifoldVertex>& chain, DVec3 target,
+                                double tolerance, int maxIterations = 50);
+
+}  // namespace erpt
