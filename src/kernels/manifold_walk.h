@@ -45,7 +45,7 @@ struct ManifoldVertex {
   // exterior's is 1); and whether the chain reflects or refracts here.
   double eta = 1;
   bool reflect = true;
-  uint32_t surface = 0;  // which surface (a shape): a retraced chain must meet the same ones
+  uint32_t surface = 0;  // which surface (a shape, Scene::shapes): a retraced chain must meet the same ones
 };
 
 // The tangential part of the generalised half vector at the chain's specular vertex i
@@ -77,6 +77,13 @@ class ManifoldTracer {
 };
 bool retraceChain(const ManifoldTracer& tracer, const std::vector<ManifoldVertex>& chain, DVec3 direction,
                   std::vector<ManifoldVertex>& out);
+
+// The generalised geometry term of the chain between its endpoints (manifold_geometry.cpp):
+// |cos theta_0| |d omega_0 / dA(x_n)|, the projected solid angle at x_0 per area at x_n
+// when x_n moves on its surface and the specular vertices follow it on the manifold. For a
+// chain without specular vertices it is the usual cos theta_0 cos theta_n / r^2. 0 where the
+// tangent system is singular.
+double generalizedGeometry(const std::vector<ManifoldVertex>& chain);
 
 struct ManifoldWalkResult {
   bool converged = false;
