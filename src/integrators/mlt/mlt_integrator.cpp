@@ -315,7 +315,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
         if (s.progress) s.progress((double(all.count) + f * mutations) / work);
       },
       0, steps);
-  chainProgress.seeds(1.0);
+  chainProgress.seeds(1.0);  // every start state is in: the steps alone may reach 1
   ChainLanes::Config config{ctx, chainSettings, s.seed, kErptLaneSlots, ms.energyPerStep, s.stop,
                             [&](uint64_t taken) { chainProgress.chainSteps(taken); }, setup.pool.threads(), &policy};
   ChainLanes machine(setup.tracer, config, setup.film, chainStatsOf(stats), stats.stages);
@@ -327,8 +327,8 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   stats.rays += chainStatsOf(stats).rays;
 
   // Stopped in the chains: each chain left its remaining energy where it stood
-  // (ChainLanes::depositUnfinished), so the image holds all of b; keptSpp says how many
-  // mutations per pixel were run.
+  // (ChainLanes::depositUnfinished), so the image holds all of b; keptSpp is the share of the
+  // steps run, in units of the spp.
   RgbImage image = machine.image(1.0);
   const RgbImage rest = inPlace.resolve(spp);
   for (size_t i = 0; i < image.pixels.size(); ++i) {

@@ -105,11 +105,7 @@ bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::
     if (stopRequested(stop)) {
       // Every member deposits what it holds where it stands, so the film holds the energy of
       // the positions taken (the render keeps it or rolls back: RenderStats::keptSpp).
-      if (config_.film) {
-        depositRemaining();
-        addLargeDeposits(large_, config_.step.measure.film, *config_.film);
-        exact_->moveInto(*config_.film);
-      }
+      settleFilm();
       return false;
     }
     const bool last = maxIterations >= 0 && it >= uint64_t(maxIterations);
@@ -137,11 +133,7 @@ bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::
     if (progress) progress(double(poolCursor_) / double(std::max<size_t>(1, rounds.size())));
   }
   pmc_.poolSize += allowed ? poolCursor_ : rounds.size();  // an open-ended pool: what was taken
-  if (config_.film) {
-    depositRemaining();
-    addLargeDeposits(large_, config_.step.measure.film, *config_.film);
-    exact_->moveInto(*config_.film);
-  }
+  settleFilm();
   pmc_.meanDeposit = depositSteps_ > 0 ? depositSum_ / double(depositSteps_) : 0;
   if (config_.film) pmc_.steps = depositSteps_;
   for (int k = 0; k < kMutationKindCount; ++k) {
@@ -434,6 +426,13 @@ void PmcPopulation::collect(size_t slot, const StepRecord& r) {
     stratRadius_[pixel] += mixture_.radii()[c];
     stratAccept_[pixel] += r.acceptance;
   }
+}
+
+void PmcPopulation::settleFilm() {
+  if (!config_.film) return;
+  depositRemaining();
+  addLargeDeposits(large_, config_.step.measure.film, *config_.film);
+  exact_->moveInto(*config_.film);
 }
 
 void PmcPopulation::depositRemaining() {

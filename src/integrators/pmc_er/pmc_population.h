@@ -110,6 +110,9 @@ class PmcPopulation {
   void runLane(size_t l, int steps);
   void collect(size_t slot, const StepRecord& r);
   void depositRemaining();
+  // The end of a run (or a stop): the members deposit what they hold where they stand, then the
+  // large deposits and the run's exact film go to the film (when there is one).
+  void settleFilm();
 
   const RenderSetup& tracing_;
   Config config_;
