@@ -38,6 +38,10 @@ struct ChainOptions {
   // The probability that a chain step (one that is not MLT's large step) proposes Veach's
   // bidirectional mutation instead of a perturbation (docs/bidirectional-mutation.md).
   float bidirectionalMutation = 0.0f;
+  // The probability that a chain step proposes the manifold perturbation instead of the
+  // strategy's perturbation, on the paths it applies to (a specular chain after the first
+  // non-specular vertex: docs/manifold.md).
+  float manifoldPerturbation = 0.0f;
   // Noise filters of the ERPT paper's section 4.4 (biased; off by default; erpt and pmc-er).
   int pmFilterRadius = -1;      // >= 0: proposed-mutations filter, box of (2r+1)^2 pixels; -1: off
   int maxConsecutive = 0;       // >= 1: consecutive-sample filter, N deposits in a row on a pixel; 0: off

@@ -16,6 +16,8 @@ enum class MutationKind : uint8_t {
   CausticVeach,  // caustic perturbation, angle uniform in [0, theta_max(path)] (PMC-ER eq. 6)
   LargeStep,     // MLT's independent proposal: a fresh path-tracer sample (large_step.h); no unit
   Bidirectional, // Veach's bidirectional mutation: a subpath deleted and regenerated from both ends
+  Manifold,      // manifold perturbation: the film position moves, the specular chain after the first
+                 // non-specular vertex is walked on its manifold to the next fixed vertex (docs/manifold.md)
   Count
 };
 constexpr int kMutationKindCount = int(MutationKind::Count);
@@ -23,7 +25,7 @@ const char* mutationName(MutationKind k);
 
 // kProposalLarge: a large step waiting for its path-tracer sample (chain_step.h's ProposalSource).
 enum ProposalState : uint8_t { kProposalWalking = 0, kProposalConnecting, kProposalComplete, kProposalRejected, kProposalLarge,
-                                  kProposalBidirectional };
+                                  kProposalBidirectional, kProposalManifold };
 enum RejectReason : uint8_t {
   kRejectNone = 0,
   kRejectNoMutation,   // no mutation of the strategy applies to this path
@@ -37,6 +39,7 @@ enum RejectReason : uint8_t {
   kRejectByChance,     // valid proposal, not accepted by the coin flip
   kRejectNoCandidate,  // large step: the sample made no path of the chosen length and technique
   kRejectOutsideDomain,  // large step: a path the chains do not hold (too long, directional light, f = 0)
+  kRejectNoWalk,       // manifold: the walk along the specular chain did not reach the proposed vertex
   kRejectReasonCount
 };
 const char* rejectReasonName(RejectReason r);
@@ -48,6 +51,7 @@ enum InPlaceReason : uint8_t {
   kInPlaceZeroContribution,  // f of the seed is zero or not finite in a chosen mutation's measure
   kInPlaceNoDepositEnergy,   // e_d = 0: the pilot pass found no seed energy
   kInPlaceDirectionalLight,  // lit by a directional light: no mutation moves such paths yet
+  kInPlaceFoldedChain,       // longer than a chain holds, and no mutation moves its vertices before the folded tail
   kInPlaceReasonCount
 };
 const char* inPlaceReasonName(InPlaceReason r);

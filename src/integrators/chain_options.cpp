@@ -55,6 +55,15 @@ OptionSpec bidirectionalMutationOption() {
                     0, 1, [](auto& s) -> auto& { return chainOf(s).bidirectionalMutation; });
 }
 
+OptionSpec manifoldPerturbationOption() {
+  return realOption("manifold-perturbation",
+                    "probability that a chain step on a path with a specular chain after its first non-specular "
+                    "vertex (a caustic seen through glass or in a mirror) proposes the manifold perturbation: the film "
+                    "position moves in a disk of the perturbation radius and the specular chain is walked on its "
+                    "manifold to the next fixed vertex (docs/manifold.md)",
+                    0, 1, [](auto& s) -> auto& { return chainOf(s).manifoldPerturbation; });
+}
+
 OptionSpec chainMapsOption() {
   OptionSpec maps("chain-maps",
                   "also writes OUT-mutations.exr (the chains' proposals per pixel, by their film positions) and "

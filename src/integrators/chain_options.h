@@ -15,8 +15,9 @@ std::vector<OptionSpec> perturbationOptions();  // strategy, lens radius and sha
 OptionSpec directSamplesOption();
 OptionSpec seedsOption();  // --seeds path|bdpt
 OptionSpec bidirectionalMutationOption();  // --bidir-mutation P
-std::vector<OptionSpec> depositOptions();
-OptionSpec chainMapsOption();  // --chain-maps: the mutations and acceptance maps (erpt, pmc-er, mlt)       // deposit rule, proposed-mutations and consecutive-sample filters
+OptionSpec manifoldPerturbationOption();  // --manifold-perturbation P
+std::vector<OptionSpec> depositOptions();  // deposit rule, proposed-mutations and consecutive-sample filters
+OptionSpec chainMapsOption();  // --chain-maps: the mutations and acceptance maps (erpt, pmc-er, mlt)
 
 // Appends `more` to `to` (for building a module's option list from these parts).
 void addOptions(std::vector<OptionSpec>& to, const std::vector<OptionSpec>& more);

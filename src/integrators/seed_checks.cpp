@@ -44,8 +44,10 @@ InPlaceReason seedSignatureReason(const StepConfig& ctx, const SeedStore& store,
   // Both choices of the `Mixed` coin.
   const MutationStrategy s = ctx.settings.strategy;
   const bool none = chooseMutation(s, kinds, int(n), 0.0f) == MutationKind::None &&
-                    chooseMutation(s, kinds, int(n), 0.999f) == MutationKind::None;
-  return none ? kInPlaceNoMutation : kInPlaceReasonCount;
+                    chooseMutation(s, kinds, int(n), 0.999f) == MutationKind::None &&
+                    !(ctx.settings.manifold > 0 && manifoldChainEnd(kinds, int(n)) > 0);
+  if (!none) return kInPlaceReasonCount;
+  return kinds[n - 1] == kTailVertex ? kInPlaceFoldedChain : kInPlaceNoMutation;
 }
 
 bool seedHasZeroContribution(const StepConfig& ctx, const SeedStore& store, size_t i) {

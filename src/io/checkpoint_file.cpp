@@ -18,7 +18,7 @@ constexpr char kMagic[8] = {'E', 'R', 'P', 'T', 'C', 'K', 'P', 'T'};
 // Bump when any integrator's state layout changes (sample_passes.h's save hooks).
 // 2: a mutation kind more in the chain counters (the bidirectional mutation); 3: the chains'
 // proposal tallies hold the acceptance map too (--chain-maps).
-constexpr uint32_t kFormatVersion = 3;
+constexpr uint32_t kFormatVersion = 4;
 
 struct Fnv1a {
   uint64_t h = 0xcbf29ce484222325ull;

@@ -23,6 +23,7 @@ const char* rejectReasonName(RejectReason r) {
     case kRejectByChance: return "not accepted (q)";
     case kRejectNoCandidate: return "large step made no such path";
     case kRejectOutsideDomain: return "large step outside the chains' paths";
+    case kRejectNoWalk: return "manifold walk did not converge";
     default: return "?";
   }
 }
@@ -36,6 +37,7 @@ const char* mutationName(MutationKind k) {
     case MutationKind::CausticVeach: return "caustic (Veach angle)";
     case MutationKind::LargeStep: return "large step";
     case MutationKind::Bidirectional: return "bidirectional";
+    case MutationKind::Manifold: return "manifold";
     default: return "?";
   }
 }
@@ -46,6 +48,7 @@ const char* inPlaceReasonName(InPlaceReason r) {
     case kInPlaceZeroContribution: return "zero or non-finite f";
     case kInPlaceNoDepositEnergy: return "no deposition energy (e_d = 0)";
     case kInPlaceDirectionalLight: return "directional light";
+    case kInPlaceFoldedChain: return "too long: folded tail, nothing before it moves";
     default: return "?";
   }
 }

@@ -12,7 +12,7 @@ double norm(DVec3 a) { return std::sqrt(dot(a, a)); }
 DVec3 unit(DVec3 a) { return a * (1.0 / norm(a)); }
 }  // namespace
 
-double generalizedGeometry(const std::vector<ManifoldVertex>& chain) {
+double generalizedGeometry(const ManifoldChain& chain) {
   const size_t n = chain.size() - 1;
   if (n < 1) return 0;
   const ManifoldVertex &x0 = chain[0], &xn = chain[n];
@@ -24,7 +24,7 @@ double generalizedGeometry(const std::vector<ManifoldVertex>& chain) {
   if (n == 1) {
     dx1[0] = xn.dpdu, dx1[1] = xn.dpdv;
   } else {
-    std::vector<double> moves;
+    double moves[2 * kMaxManifoldVertices];
     for (int axis = 0; axis < 2; ++axis) {
       const double unitMove[2] = {axis == 0 ? 1.0 : 0.0, axis == 0 ? 0.0 : 1.0};
       if (!manifoldTangentMoves(chain, unitMove, moves)) return 0;

@@ -9,7 +9,7 @@ DVec3 d3(Vec3 v) { return {v.x, v.y, v.z}; }
 double norm(DVec3 a) { return std::sqrt(dot(a, a)); }
 }  // namespace
 
-ManifoldVertex manifoldTriangleVertex(const TriangleSoup& mesh, uint32_t tri, float b1, float b2) {
+ManifoldVertex manifoldTriangleVertex(const TriangleSoup& mesh, uint32_t tri, double b1, double b2) {
   const uint32_t i0 = mesh.v0[tri], i1 = mesh.v1[tri], i2 = mesh.v2[tri];
   const DVec3 p0 = d3(mesh.position(i0)), p1 = d3(mesh.position(i1)), p2 = d3(mesh.position(i2));
   const double w1 = b1, w2 = b2, w0 = 1 - w1 - w2;
@@ -34,10 +34,10 @@ ManifoldVertex manifoldTriangleVertex(const TriangleSoup& mesh, uint32_t tri, fl
   return v;
 }
 
-ManifoldVertex manifoldSphereVertex(const SphereSet& spheres, uint32_t i, Vec3 p) {
+ManifoldVertex manifoldSphereVertex(const SphereSet& spheres, uint32_t i, DVec3 p) {
   const DVec3 c = d3(spheres.center(i));
   const double r = spheres.radius[i];
-  DVec3 out = d3(p) - c;
+  DVec3 out = p - c;
   out = out * (1.0 / norm(out));
   const double side = spheres.flipped[i] ? -1.0 : 1.0;
   ManifoldVertex v;

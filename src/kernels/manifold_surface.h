@@ -13,10 +13,13 @@ namespace erpt {
 
 // The point of triangle `tri` at barycentrics (b1, b2) (weights of its second and third
 // vertex): dpdu, dpdv are its edges from the first vertex, along which b1 and b2 grow.
-ManifoldVertex manifoldTriangleVertex(const TriangleSoup& mesh, uint32_t tri, float b1, float b2);
+ManifoldVertex manifoldTriangleVertex(const TriangleSoup& mesh, uint32_t tri, double b1, double b2);
 
 // The point `p` of exact sphere `i` (projected onto it), its normal outwards unless the
 // sphere is flipped.
-ManifoldVertex manifoldSphereVertex(const SphereSet& spheres, uint32_t i, Vec3 p);
+ManifoldVertex manifoldSphereVertex(const SphereSet& spheres, uint32_t i, DVec3 p);
+inline ManifoldVertex manifoldSphereVertex(const SphereSet& spheres, uint32_t i, Vec3 p) {
+  return manifoldSphereVertex(spheres, i, DVec3{p.x, p.y, p.z});
+}
 
 }  // namespace erpt

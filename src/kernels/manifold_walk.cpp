@@ -59,7 +59,7 @@ double iorOnSide(const ManifoldVertex& v, DVec3 w) { return dot(w, v.n) >= 0 ? 1
 
 // Constraint i with vertex `which` (0: x_{i-1}, 1: x_i, 2: x_{i+1}; -1: none) moved along its
 // (u, v): its value and the derivatives of that move.
-void constraintWith(const std::vector<ManifoldVertex>& chain, int i, int which, Dual c[2]) {
+void constraintWith(const ManifoldChain& chain, int i, int which, Dual c[2]) {
   const ManifoldVertex &prev = chain[size_t(i - 1)], &cur = chain[size_t(i)], &next = chain[size_t(i + 1)];
   const DualVec a = moved(prev.p, prev.dpdu, prev.dpdv, which == 0);
   const DualVec b = moved(next.p, next.dpdu, next.dpdv, which == 2);
@@ -99,9 +99,9 @@ void apply(M2 m, const double x[2], double out[2]) {
 }
 M2 fromRows(const double r[4]) { return {r[0], r[1], r[2], r[3]}; }
 
-// The new direction at a retraced specular vertex hit by a ray travelling along `incoming`;
-// false at total internal reflection where the chain refracts.
-bool scatter(const ManifoldVertex& v, DVec3 incoming, DVec3& out) {
+}  // namespace
+
+bool scatterAtManifoldVertex(const ManifoldVertex& v, DVec3 incoming, DVec3& out) {
   const DVec3 wi = incoming * -1.0;
   double cosI = dot(wi, v.n);
   if (v.reflect) {
@@ -121,15 +121,13 @@ bool scatter(const ManifoldVertex& v, DVec3 incoming, DVec3& out) {
   return true;
 }
 
-}  // namespace
-
-void manifoldConstraint(const std::vector<ManifoldVertex>& chain, int i, double c[2]) {
+void manifoldConstraint(const ManifoldChain& chain, int i, double c[2]) {
   Dual d[2];
   constraintWith(chain, i, -1, d);
   c[0] = d[0].v, c[1] = d[1].v;
 }
 
-void manifoldConstraintBlocks(const std::vector<ManifoldVertex>& chain, int i, double a[4], double b[4], double c[4]) {
+void manifoldConstraintBlocks(const ManifoldChain& chain, int i, double a[4], double b[4], double c[4]) {
   double* blocks[3] = {a, b, c};
   for (int which = 0; which < 3; ++which) {
     Dual d[2];
@@ -139,17 +137,15 @@ void manifoldConstraintBlocks(const std::vector<ManifoldVertex>& chain, int i, d
   }
 }
 
-bool manifoldTangentMoves(const std::vector<ManifoldVertex>& chain, const double endpointMove[2],
-                          std::vector<double>& moves) {
+bool manifoldTangentMoves(const ManifoldChain& chain, const double endpointMove[2], double* moves) {
   const int n = int(chain.size()) - 1;
   const int k = n - 1;  // specular vertices x_1 .. x_{n-1}
-  moves.assign(size_t(2 * std::max(k, 0)), 0.0);
   if (k <= 0) return false;
   // Rows i = 1 .. k: A_i d_{i-1} + B_i d_i + C_i d_{i+1} = 0, with d_0 = 0 and d_n given, by
   // block elimination (Thomas): C'_i = D_i^-1 C_i, r'_i = D_i^-1 (r_i - A_i r'_{i-1}),
   // D_i = B_i - A_i C'_{i-1}; then back substitution.
-  std::vector<M2> upper(static_cast<size_t>(k));
-  std::vector<double> rhs(size_t(2 * k), 0.0);
+  std::array<M2, kMaxManifoldVertices> upper;
+  std::array<double, 2 * kMaxManifoldVertices> rhs{};
   for (int i = 1; i <= k; ++i) {
     double a[4], b[4], c[4];
     manifoldConstraintBlocks(chain, i, a, b, c);
@@ -183,8 +179,8 @@ bool manifoldTangentMoves(const std::vector<ManifoldVertex>& chain, const double
   return true;
 }
 
-bool retraceChain(const ManifoldTracer& tracer, const std::vector<ManifoldVertex>& chain, DVec3 direction,
-                  std::vector<ManifoldVertex>& out) {
+bool retraceChain(const ManifoldTracer& tracer, const ManifoldChain& chain, DVec3 direction,
+                  ManifoldChain& out) {
   out.assign(1, chain.front());
   DVec3 origin = chain.front().p, dir = unit(direction);
   for (size_t j = 1; j < chain.size(); ++j) {
@@ -194,47 +190,75 @@ bool retraceChain(const ManifoldTracer& tracer, const std::vector<ManifoldVertex
     out.push_back(hit);
     if (j + 1 == chain.size()) break;
     DVec3 next;
-    if (!scatter(hit, dir, next)) return false;
+    if (!scatterAtManifoldVertex(hit, dir, next)) return false;
     origin = hit.p;
     dir = unit(next);
   }
   return true;
 }
 
-ManifoldWalkResult manifoldWalk(const ManifoldTracer& tracer, std::vector<ManifoldVertex>& chain, DVec3 target,
-                                double tolerance, int maxIterations) {
-  ManifoldWalkResult result;
+void startManifoldWalk(ManifoldWalk& w) {
+  w.step = 1;
+  w.result = ManifoldWalkResult{};
+  w.result.distance = norm(w.chain.back().p - w.target);
+  w.ended = w.chain.size() < 3 || w.result.distance <= w.tolerance;  // < 3: no specular vertex to walk
+  w.result.converged = w.result.distance <= w.tolerance;
+}
+
+bool manifoldWalkAim(ManifoldWalk& w, DVec3& direction) {
+  if (w.ended) return false;
+  ManifoldChain& chain = w.chain;
   const size_t n = chain.size() - 1;
-  result.distance = norm(chain[n].p - target);
-  if (n < 2) return result;  // no specular vertex: nothing to walk
-  double step = 1;
-  std::vector<double> moves;
-  std::vector<ManifoldVertex> trial;
-  while (result.distance > tolerance && result.iterations < maxIterations) {
-    ++result.iterations;
-    // The endpoint's move in its (u, v): least squares of the offset onto its tangents.
-    const ManifoldVertex& end = chain[n];
-    const DVec3 offset = target - end.p;
-    const double guu = dot(end.dpdu, end.dpdu), guv = dot(end.dpdu, end.dpdv), gvv = dot(end.dpdv, end.dpdv);
-    const double det = guu * gvv - guv * guv;
-    if (!(std::abs(det) > 0)) break;
-    const double ou = dot(offset, end.dpdu), ov = dot(offset, end.dpdv);
-    const double move[2] = {step * (gvv * ou - guv * ov) / det, step * (guu * ov - guv * ou) / det};
-    if (!manifoldTangentMoves(chain, move, moves)) break;
-    const DVec3 aim = chain[1].p + chain[1].dpdu * moves[0] + chain[1].dpdv * moves[1];
-    double distance = 0;
-    if (retraceChain(tracer, chain, aim - chain[0].p, trial) &&
-        (distance = norm(trial[n].p - target)) < result.distance) {
-      chain.swap(trial);
-      result.distance = distance;
-      step = std::min(1.0, 2 * step);
-    } else {
-      step *= 0.5;  // too far for the first-order prediction: a shorter step
-      if (step < 1e-6) break;
-    }
+  if (w.result.iterations >= w.maxIterations) {
+    w.ended = true;
+    return false;
   }
-  result.converged = result.distance <= tolerance;
-  return result;
+  ++w.result.iterations;
+  // The endpoint's move in its (u, v): least squares of the offset onto its tangents.
+  const ManifoldVertex& end = chain[n];
+  const DVec3 offset = w.target - end.p;
+  const double guu = dot(end.dpdu, end.dpdu), guv = dot(end.dpdu, end.dpdv), gvv = dot(end.dpdv, end.dpdv);
+  const double det = guu * gvv - guv * guv;
+  double moves[2 * kMaxManifoldVertices];
+  const double ou = dot(offset, end.dpdu), ov = dot(offset, end.dpdv);
+  const double move[2] = {w.step * (gvv * ou - guv * ov) / det, w.step * (guu * ov - guv * ou) / det};
+  if (!(std::abs(det) > 0) || !manifoldTangentMoves(chain, move, moves)) {
+    w.ended = true;
+    return false;
+  }
+  const DVec3 aim = chain[1].p + chain[1].dpdu * moves[0] + chain[1].dpdv * moves[1];
+  direction = aim - chain[0].p;
+  return true;
+}
+
+void manifoldWalkTake(ManifoldWalk& w, bool retraced, ManifoldChain& trial) {
+  const size_t n = w.chain.size() - 1;
+  double distance = 0;
+  if (retraced && trial.size() == w.chain.size() && (distance = norm(trial[n].p - w.target)) < w.result.distance) {
+    w.chain.swap(trial);
+    w.result.distance = distance;
+    w.step = std::min(1.0, 2 * w.step);
+  } else {
+    w.step *= 0.5;  // too far for the first-order prediction: a shorter step
+    if (w.step < 1e-6) w.ended = true;
+  }
+  w.result.converged = w.result.distance <= w.tolerance;
+  if (w.result.converged) w.ended = true;
+}
+
+ManifoldWalkResult manifoldWalk(const ManifoldTracer& tracer, ManifoldChain& chain, DVec3 target,
+                                double tolerance, int maxIterations) {
+  ManifoldWalk w;
+  w.chain.swap(chain);
+  w.target = target;
+  w.tolerance = tolerance;
+  w.maxIterations = maxIterations;
+  startManifoldWalk(w);
+  DVec3 direction;
+  ManifoldChain trial;
+  while (manifoldWalkAim(w, direction)) manifoldWalkTake(w, retraceChain(tracer, w.chain, direction, trial), trial);
+  chain.swap(w.chain);
+  return w.result;
 }
 
 }  // namespace erpt

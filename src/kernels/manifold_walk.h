@@ -19,8 +19,10 @@
 // (ManifoldTracer): one ray per vertex of the chain.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
-#include <vector>
+#include <utility>
 
 namespace erpt {
 
@@ -46,54 +48,130 @@ struct ManifoldVertex {
   double eta = 1;
   bool reflect = true;
   uint32_t surface = 0;  // which surface (a shape, Scene::shapes): a retraced chain must meet the same ones
+  // Where the scene's tracer found it (kernels/manifold_retrace.h): its primitive and hit
+  // coordinates, from which the renderer's own surface point is made; ~0u for analytic tests.
+  uint32_t primitive = ~0u;
+  float hitU = 0, hitV = 0;
+  DVec3 ng;  // unit geometric normal (which side a ray leaving it starts on)
+};
+
+// Most vertices a chain may have (its two ends included).
+constexpr int kMaxManifoldVertices = 16;
+
+// A chain's vertices, held in place: a stage's thousands of walks allocate nothing. (The
+// part of std::vector's interface the walks use.)
+class ManifoldChain {
+ public:
+  ManifoldChain() = default;
+  explicit ManifoldChain(size_t n) { resize(n); }
+  size_t size() const { return n_; }
+  bool empty() const { return n_ == 0; }
+  ManifoldVertex& operator[](size_t i) { return v_[i]; }
+  const ManifoldVertex& operator[](size_t i) const { return v_[i]; }
+  ManifoldVertex& front() { return v_[0]; }
+  const ManifoldVertex& front() const { return v_[0]; }
+  ManifoldVertex& back() { return v_[n_ - 1]; }
+  const ManifoldVertex& back() const { return v_[n_ - 1]; }
+  // False (and the chain unchanged) when it is full.
+  bool push_back(const ManifoldVertex& v) {
+    if (n_ == size_t(kMaxManifoldVertices)) return false;
+    v_[n_++] = v;
+    return true;
+  }
+  void resize(size_t n) { n_ = n < size_t(kMaxManifoldVertices) ? n : size_t(kMaxManifoldVertices); }
+  void assign(size_t n, const ManifoldVertex& v) {
+    resize(n);
+    for (size_t i = 0; i < n_; ++i) v_[i] = v;
+  }
+  void clear() { n_ = 0; }
+  // Copies only the vertices in use.
+  ManifoldChain(const ManifoldChain& o) : n_(o.n_) {
+    for (size_t i = 0; i < n_; ++i) v_[i] = o.v_[i];
+  }
+  ManifoldChain& operator=(const ManifoldChain& o) {
+    n_ = o.n_;
+    for (size_t i = 0; i < n_; ++i) v_[i] = o.v_[i];
+    return *this;
+  }
+  void swap(ManifoldChain& o) {
+    const size_t m = n_ > o.n_ ? n_ : o.n_;
+    for (size_t i = 0; i < m; ++i) std::swap(v_[i], o.v_[i]);
+    std::swap(n_, o.n_);
+  }
+
+ private:
+  std::array<ManifoldVertex, kMaxManifoldVertices> v_;
+  size_t n_ = 0;
 };
 
 // The tangential part of the generalised half vector at the chain's specular vertex i
 // (1 <= i < n): zero on the manifold.
-void manifoldConstraint(const std::vector<ManifoldVertex>& chain, int i, double c[2]);
+void manifoldConstraint(const ManifoldChain& chain, int i, double c[2]);
 
 // The 2x2 blocks of constraint i's derivatives with respect to the (u, v) moves
 // x + u dpdu + v dpdv of its vertex's neighbours and itself: d c_i / d x_{i-1} (a), d x_i (b),
 // d x_{i+1} (c), each row-major [dc0/du, dc0/dv, dc1/du, dc1/dv]. Exact first derivatives
 // (forward-mode automatic differentiation over the same formula as manifoldConstraint).
-void manifoldConstraintBlocks(const std::vector<ManifoldVertex>& chain, int i, double a[4], double b[4], double c[4]);
+void manifoldConstraintBlocks(const ManifoldChain& chain, int i, double a[4], double b[4], double c[4]);
 
 // The moves (du, dv) of the specular vertices x_1 .. x_{n-1} that keep every constraint at
 // first order when the endpoint x_n moves by (du_n, dv_n) along its surface and x_0 stays:
 // the block tridiagonal solve of the paper. False when the system is singular there.
-bool manifoldTangentMoves(const std::vector<ManifoldVertex>& chain, const double endpointMove[2],
-                          std::vector<double>& moves);
+// `moves` holds 2 (n - 1) numbers: (du, dv) of x_1, then of x_2, ...
+bool manifoldTangentMoves(const ManifoldChain& chain, const double endpointMove[2], double* moves);
 
 // Retraces a chain: from `origin`, a ray along `direction`; at every specular vertex the
 // chain's interaction (reflection, or refraction with its eta) gives the next ray. Fills the
 // vertices hit after the origin (chain order) and returns false if a ray missed, hit another
 // surface than `surfaces` names in order, or found total internal reflection where the chain
 // refracts. The caller traces the rays (a ray caster, or the tracer's streams).
+// The direction in which the chain leaves its specular vertex v, hit by a ray travelling
+// along `incoming` (v.reflect: reflection, else refraction with v.eta); false at total
+// internal reflection where the chain refracts.
+bool scatterAtManifoldVertex(const ManifoldVertex& v, DVec3 incoming, DVec3& out);
+
 class ManifoldTracer {
  public:
   virtual ~ManifoldTracer() = default;
   // The first surface point along the ray, or false.
   virtual bool intersect(DVec3 origin, DVec3 direction, ManifoldVertex& hit) const = 0;
 };
-bool retraceChain(const ManifoldTracer& tracer, const std::vector<ManifoldVertex>& chain, DVec3 direction,
-                  std::vector<ManifoldVertex>& out);
+bool retraceChain(const ManifoldTracer& tracer, const ManifoldChain& chain, DVec3 direction,
+                  ManifoldChain& out);
 
 // The generalised geometry term of the chain between its endpoints (manifold_geometry.cpp):
 // |cos theta_0| |d omega_0 / dA(x_n)|, the projected solid angle at x_0 per area at x_n
 // when x_n moves on its surface and the specular vertices follow it on the manifold. For a
 // chain without specular vertices it is the usual cos theta_0 cos theta_n / r^2. 0 where the
 // tangent system is singular.
-double generalizedGeometry(const std::vector<ManifoldVertex>& chain);
+double generalizedGeometry(const ManifoldChain& chain);
 
 struct ManifoldWalkResult {
   bool converged = false;
   int iterations = 0;  // Newton steps taken (accepted or halved)
   double distance = 0; // |x_n - target| at the end
 };
-// Walks `chain` (on the manifold) until its endpoint is within `tolerance` of `target`, a point
-// on the endpoint's surface near it, in at most `maxIterations` steps. On success the chain
-// holds the new path.
-ManifoldWalkResult manifoldWalk(const ManifoldTracer& tracer, std::vector<ManifoldVertex>& chain, DVec3 target,
+// One walk as a state machine, so that many walks can share the tracer's ray streams
+// (kernels/manifold_retrace.h): manifoldWalkAim gives the direction from chain[0] of the next
+// retrace, or false once the walk has ended; manifoldWalkTake hands it the retraced chain
+// (`retraced` false: the retrace failed). The chain, on the manifold, is brought until its
+// endpoint is within `tolerance` of `target`, a point on the endpoint's surface near it, in at
+// most `maxIterations` steps; on success it holds the new path.
+struct ManifoldWalk {
+  ManifoldChain chain;
+  DVec3 target;
+  double tolerance = 0;
+  int maxIterations = 50;
+  double step = 1;  // the share of the first-order move tried next (halved after a failed try)
+  ManifoldWalkResult result;
+  bool ended = false;
+};
+void startManifoldWalk(ManifoldWalk& w);
+bool manifoldWalkAim(ManifoldWalk& w, DVec3& direction);
+void manifoldWalkTake(ManifoldWalk& w, bool retraced, ManifoldChain& trial);
+
+// The same walk, retraced one ray at a time by `tracer`.
+ManifoldWalkResult manifoldWalk(const ManifoldTracer& tracer, ManifoldChain& chain, DVec3 target,
                                 double tolerance, int maxIterations = 50);
 
 }  // namespace erpt

@@ -48,7 +48,8 @@
   F(uint8_t, vertexCount, {}, "large step: vertices of the proposed path (perturbations keep the chain's)") \
   F(uint64_t, signature, {}, "large step: vertex kinds of the proposed path")                       \
   F(float, largeWeight, {}, "large step: W(z) = lum(f) / q of the proposed path")            \
-  F(float, ratio, {}, "bidirectional mutation: f(z) T(z -> y) / (f(y) T(y -> z)) on luminance")
+  F(float, ratio, {}, "bidirectional mutation: f(z) T(z -> y) / (f(y) T(y -> z)) on luminance") \
+  F(float, measureRatio, {}, "the factor of f(z) / f(y) in the unit's measure that the vertices alone do not give (manifold: the chains' |d omega / dA| at z over y, measured by its stage); 1 otherwise")
 
 // What one chain step deposits: kDepositsPerStep rows per chain slot (the paper's rule fills
 // one, expected values two). Applied to the film in slot order, so the image does not depend

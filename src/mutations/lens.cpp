@@ -12,6 +12,7 @@
 #include "path_factors.h"
 #include "core/rng.h"
 #include "tracer/tracer.h"
+#include "eye_walk_start.h"
 
 namespace erpt {
 
@@ -68,9 +69,6 @@ Color lensContribution(const MeasureContext& c, const PathVertex* path, int n, f
 
 namespace {
 
-// Film positions a little outside the square or disk by rounding still count as inside.
-constexpr float kFilmSlack = 1e-3f;
-
 bool appliesToAnyChainPath(const uint8_t* kinds, int n) {
   if (n < 2 || n > kMaxChainVertices) return false;
   if (kinds[n - 1] != kTailVertex) return true;
@@ -86,98 +84,27 @@ int lensTailStart(const uint8_t* kinds, int n) {
   return target < 0 ? n : std::min(n, target + 1);
 }
 
-// Film positions of the two shapes: uniform in the square of half-side `size`, or in the
-// disk of radius `size` (radius size * sqrt(u1), angle 2 pi u2).
-void squareOffset(float size, float u1, float u2, float& dx, float& dy) {
-  dx = (2 * u1 - 1) * size;
-  dy = (2 * u2 - 1) * size;
-}
-
-void diskOffset(float size, float u1, float u2, float& dx, float& dy) {
-  const float r = size * std::sqrt(u1), phi = 2 * kPi * u2;
-  dx = r * std::cos(phi);
-  dy = r * std::sin(phi);
-}
-
-// The eye rays of a batch of lens starts. A scalar camera ray is a chain of dependent
-// divisions and square roots; the camera's vector kernel makes a batch of them at once.
-class EyeRayBatch {
- public:
-  EyeRayBatch(const Camera& camera, const VertexQueue& chainVertices, RayQueue& rays)
-      : camera_(camera), chainVertices_(chainVertices), rays_(rays) {}
-
-  void add(size_t slot, float filmX, float filmY) {
-    slot_[count_] = slot;
-    filmX_[count_] = filmX;
-    filmY_[count_] = filmY;
-    if (++count_ == kSize) flush();
-  }
-
-  void flush() {
-    if (count_ == 0) return;
-    float dx[kSize], dy[kSize], dz[kSize], tnear[kSize], tfar[kSize];
-    camera_.generateRays(filmX_, filmY_, count_, dx, dy, dz, tnear, tfar);
-    for (size_t b = 0; b < count_; ++b) {
-      Camera::Ray r{camera_.position(), Vec3(dx[b], dy[b], dz[b]), tnear[b], tfar[b]};
-      // From the chain's lens point (vertex 0), which stays fixed.
-      if (camera_.hasLens()) r = camera_.refocus(chainVertices_.pAt(slot_[b] * kMaxChainVertices), r);
-      setRay(rays_, slot_[b], r.origin, r.direction, r.tnear, r.tfar);
-    }
-    count_ = 0;
-  }
-
- private:
-  static constexpr size_t kSize = 64;
-
-  const Camera& camera_;
-  const VertexQueue& chainVertices_;
-  RayQueue& rays_;
-  size_t slot_[kSize];
-  float filmX_[kSize], filmY_[kSize];
-  size_t count_ = 0;
-};
-
-// Every lens start of a range: the new film position, the walk's plan from the packed
-// signature (lens starts never unpack the path), and the eye ray.
-template <auto Offset>
-void startLensRange(MutationKind kind, const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
-                    ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
-  const MeasureContext& c = ctx.measure;
-  EyeRayBatch eyeRays(c.camera, chainVertices, rays);
-  for (size_t i = range.begin; i < range.end; ++i) {
-    if (proposals.mutation[i] != uint8_t(kind) || proposals.state[i] != kProposalWalking) continue;
-    const uint64_t key = chains.key[i];
-    const uint32_t step = chains.step[i];
-    float dx, dy;
-    Offset(proposals.perturbSize[i], uniformFloat(key, stepDim(step, kDimStart1)),
-           uniformFloat(key, stepDim(step, kDimStart2)), dx, dy);
-    const float fx = chains.filmX[i] + dx, fy = chains.filmY[i] + dy;
-    proposals.filmX[i] = fx;
-    proposals.filmY[i] = fy;
-    if (!(c.film.density(fx, fy) > 0)) {
-      rejectProposal(proposals, rays, i, kRejectOffFilm);
-      continue;
-    }
-    const uint64_t signature = chains.signature[i];
-    const int connectTo = connectionTarget([signature](int j) { return kindAt(signature, j); }, chains.vertexCount[i]);
-    proposals.cursor[i] = 1;
-    proposals.walk[i] = +1;
-    proposals.regenFirst[i] = 1;
-    proposals.regenLast[i] = int8_t(connectTo > 0 ? connectTo - 1 : chains.vertexCount[i] - 1);
-    proposals.connectTo[i] = int8_t(connectTo);
-    eyeRays.add(i, fx, fy);
-  }
-  eyeRays.flush();
+// The lens walk's plan from the packed signature (lens starts never unpack the path): the eye
+// ray's walk regenerates up to the connection target, or to the light when it is reached by
+// tracing.
+bool lensPlan(uint64_t signature, int n, int& regenLast, int& connectTo) {
+  connectTo = connectionTarget([signature](int j) { return kindAt(signature, j); }, n);
+  regenLast = connectTo > 0 ? connectTo - 1 : n - 1;
+  return true;
 }
 
 void startSquareRange(const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                       ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
-  startLensRange<squareOffset>(MutationKind::Lens, ctx, chains, chainVertices, proposals, rays, range);
+  startEyeWalks<squareOffset, lensPlan>(MutationKind::Lens, ctx, chains, chainVertices, proposals, rays, range);
 }
 
 void startDiskRange(const StepConfig& ctx, const ChainQueue& chains, const VertexQueue& chainVertices,
                     ProposalQueue& proposals, RayQueue& rays, IndexRange range) {
-  startLensRange<diskOffset>(MutationKind::LensDisk, ctx, chains, chainVertices, proposals, rays, range);
+  startEyeWalks<diskOffset, lensPlan>(MutationKind::LensDisk, ctx, chains, chainVertices, proposals, rays, range);
+}
+
+float diskRatio(const MeasureContext&, const CurrentPath& y, const CurrentPath& z, float size) {
+  return withinDisk(y, z, size) ? 1.0f : 0.0f;  // 1 / (pi size^2) both ways
 }
 
 float squareRatio(const MeasureContext&, const CurrentPath& y, const CurrentPath& z, float size) {
@@ -185,10 +112,6 @@ float squareRatio(const MeasureContext&, const CurrentPath& y, const CurrentPath
   return inside ? 1.0f : 0.0f;  // 1 / (2 size)^2 both ways
 }
 
-float diskRatio(const MeasureContext&, const CurrentPath& y, const CurrentPath& z, float size) {
-  const float dx = y.filmX - z.filmX, dy = y.filmY - z.filmY;
-  return std::sqrt(dx * dx + dy * dy) <= size + kFilmSlack ? 1.0f : 0.0f;  // 1 / (pi size^2) both ways
-}
 
 }  // namespace
 

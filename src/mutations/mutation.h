@@ -153,6 +153,18 @@ Color causticContribution(const MeasureContext& c, const PathVertex* path, int n
 // theta(d) the angle of d pixels at the eye.
 float causticThetaMax(const MeasureContext& c, const CurrentPath& y, float pixels);
 
+// Manifold perturbation (src/mutations/manifold.cpp): the fixed vertex c its chain walks to (a
+// light, or a non-specular vertex), with the first non-specular vertex b in `first`, or -1 when
+// it does not apply (no specular chain right after b); f in its measure without the chain's
+// |d omega_b / dA_c|, which the manifold stage measures (proposals.measureRatio).
+int manifoldChainEnd(const uint8_t* kinds, int n, int* first = nullptr);
+Color manifoldContribution(const MeasureContext& c, const PathVertex* path, int n, float filmX, float filmY,
+                           FixedTail* tail = nullptr);
+// The manifold perturbation's coin (--manifold-perturbation P) for chain slot i: true with
+// probability P on the paths it applies to. The signature decides, so the choice has the same
+// probability at y and z and cancels in the acceptance ratio.
+bool choosesManifold(const StepConfig& ctx, const ChainQueue& chains, size_t i, const uint8_t* kinds, int n);
+
 // The family a strategy picks for a signature (Lens or Caustic, or None); the settings' lens
 // shape and caustic angle then pick the unit. It depends on the signature only, which
 // mutations preserve, so the selection probabilities are the same forwards and backwards and

@@ -7,13 +7,13 @@
 namespace erpt {
 
 extern const Mutation kLensSquareMutation, kLensDiskMutation, kCausticMutation, kCausticVeachMutation, kLargeStepMutation,
-    kBidirectionalMutation;
+    kBidirectionalMutation, kManifoldMutation;
 
 namespace {
 // Constant-initialized (addresses only), so a lookup is one indexed load.
 const Mutation* const kUnits[kMutationKindCount] = {nullptr, &kLensSquareMutation, &kLensDiskMutation, &kCausticMutation,
                                                     &kCausticVeachMutation, &kLargeStepMutation,
-                                                    &kBidirectionalMutation};
+                                                    &kBidirectionalMutation, &kManifoldMutation};
 }  // namespace
 
 const Mutation& mutationOf(MutationKind kind) {

@@ -18,9 +18,10 @@ bool rejectsZero(ProposalQueue& proposals, size_t i, float lz) {
 }
 
 // q from lum(f(z)) = lz, lum(f(y)) = ly and T(z->y) / T(y->z) = ratio, times a(z) / a(y) when
-// the choice depends on the film position; the colour a deposit of z carries.
+// the choice depends on the film position and the measure's factor that the unit's stage
+// measured (both 1 otherwise); the colour a deposit of z carries.
 void decide(ProposalQueue& proposals, size_t i, float lz, float ly, float ratio, Acceptance& a) {
-  ratio *= proposals.selection[i];
+  ratio *= proposals.selection[i] * proposals.measureRatio[i];
   if (!(ly > 0) || !std::isfinite(ly)) {
     // A chain must never stand on a path of zero density in the mutation's measure (it would
     // accept everything); seeds are checked when chains start, this is the guard.

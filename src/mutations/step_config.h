@@ -25,10 +25,11 @@ struct StepSettings {
   FlowRule flow = ErptSettings{}.flow;  // DetailedBalance (ERPT's): chains never move
   bool expectedDeposit = ChainOptions{}.expectedDeposit;
   float bidirectional = ChainOptions{}.bidirectionalMutation;  // P(bidirectional mutation) per step
+  float manifold = ChainOptions{}.manifoldPerturbation;  // P(manifold perturbation) per step where it applies
 };
 inline StepSettings stepSettingsOf(const ChainOptions& s, FlowRule flow = FlowRule::EqualDeposition) {
   return StepSettings{s.strategy, s.lensRadius, s.lensShape, s.causticAngle, flow, s.expectedDeposit,
-                      s.bidirectionalMutation};
+                      s.bidirectionalMutation, s.manifoldPerturbation};
 }
 
 struct StepConfig {
@@ -52,8 +53,10 @@ struct StepConfig {
 // kDimBidirectional: the coin for the bidirectional mutation, whose own numbers come from a
 // stream of their own (chain_bidirectional.cpp). kDimLargeStep: MLT's coin for a large step; a large step then draws its pixel, path length
 // and technique from kDimStart1, kDimStart2 and kDimPerturb (no perturbation uses them then).
+// kDimManifold: the coin for the manifold perturbation.
 enum StepDim : uint32_t {
-  kDimStrategy = 0, kDimAccept, kDimStart1, kDimStart2, kDimPerturb, kDimLargeStep = 28, kDimComponent = 30, kDimBidirectional = 31,
+  kDimStrategy = 0, kDimAccept, kDimStart1, kDimStart2, kDimPerturb, kDimLargeStep = 28, kDimManifold = 29, kDimComponent = 30,
+  kDimBidirectional = 31,
   kStepDims = 32
 };
 static_assert(kDimPerturb + 2 * kMaxChainVertices <= kDimLargeStep, "step dimensions overlap");

@@ -31,6 +31,12 @@ class ErptChooser final : public ProposalPolicy {
       }
       const int n = chains.vertexCount[i];
       unpackSignature(chains.signature[i], n, kinds);
+      if (choosesManifold(ctx, chains, i, kinds, n)) {
+        proposals.mutation[i] = uint8_t(MutationKind::Manifold);
+        proposals.perturbSize[i] = ctx.settings.lensRadius;
+        proposals.state[i] = kProposalWalking;
+        continue;
+      }
       const MutationKind family = chooseMutation(ctx.settings.strategy, kinds, n,
                                                  uniformFloat(chains.key[i], stepDim(chains.step[i], kDimStrategy)));
       if (family == MutationKind::None) {
@@ -60,6 +66,7 @@ bool resetProposal(const ChainQueue& chains, ProposalQueue& proposals, RayQueue&
   proposals.acceptance[i] = 0;
   proposals.component[i] = 0;
   proposals.selection[i] = 1;
+  proposals.measureRatio[i] = 1;
   proposals.state[i] = kProposalRejected;  // until the chooser picks a mutation
   if (chains.stepsLeft[i] > 0) return true;
   rejectProposal(proposals, rays, i, kRejectNone);

@@ -136,6 +136,12 @@ inline void setConnectionRay(RayQueue& shadowRays, size_t i, const PathVertex& f
 uint64_t stageChainBidirectional(const Tracer& tracer, const StepConfig& ctx, StepQueues& q, size_t grain,
                                  StageTimes* times);
 
+// The manifold stage (chain_manifold.cpp), after the trace stage: the proposals in state
+// kProposalManifold walk the current path's specular chain to their new first non-specular
+// vertex and back, and leave complete (their chain's vertices regenerated, the ratio of its
+// |d omega / dA| in proposals.measureRatio) or rejected. Returns the rays traced.
+uint64_t stageChainManifold(const Tracer& tracer, const StepConfig& ctx, StepQueues& q, size_t grain, StageTimes* times);
+
 // Connect stage: the occlusion stream for the connection rays of `range`, then rejects the
 // proposals whose connection is blocked. `slotOf` as for the trace stage: row k of
 // `shadowRays` is slot slotOf[k]'s connection.

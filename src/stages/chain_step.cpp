@@ -87,6 +87,7 @@ uint64_t ChainStep::traceAndConnect(StepQueues& q) const {
       n = keepWalking(q);
     }
   }
+  rays += stageChainManifold(tracer, ctx, q, grain, times);
   const size_t connections = gatherBySlot(q, q.shadowRays, kProposalConnecting);
   rays += connections;
   forEachRange("chain connect", connections, grain, [&](IndexRange r) {

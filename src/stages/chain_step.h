@@ -1,5 +1,5 @@
 // One step of every chain in an StepQueues, the only implementation of the protocol
-//   mutate -> (intersect -> trace)* -> connect -> accept
+//   mutate -> (intersect -> trace)* -> manifold -> connect -> accept
 // (chain_stages.h), used by the ERPT chain machine, the stage tests and the benchmark. Each
 // stage runs over the whole queue split into ranges across threads; intersect and connect hand
 // Embree only the ranges that have rays in flight. The deposit records are left in the
@@ -22,7 +22,7 @@ struct ChainStep {
   size_t grain = 256;           // slots per range
   const ProposalPolicy* policy = nullptr;  // the integrator's choices; null: ERPT's (erptChooser)
 
-  // mutate -> (intersect -> trace)* -> connect; returns the rays traced.
+  // mutate -> (intersect -> trace)* -> manifold -> connect; returns the rays traced.
   uint64_t propose(StepQueues& q) const;
   // (intersect -> trace)* -> connect for proposals already started (their first rays set):
   // propose() after mutate, and tests that aim a proposal by hand (a reverse move).

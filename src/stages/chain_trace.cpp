@@ -4,7 +4,8 @@
 // last regenerated one it perturbs the direction (the lens perturbation's D vertices followed
 // by S); at the last regenerated vertex it connects to `connectTo` (the eye: film position by
 // projection; a fixed vertex), or, with nothing to connect to, it must have traced into the
-// light. The mutation's start wrote these numbers (mutation.h).
+// light; or, with a specular chain before `connectTo`, it leaves the proposal to the manifold
+// stage (chain_manifold.cpp). The mutation's start wrote these numbers (mutation.h).
 #include "models/bsdf.h"
 #include "kernels/surface_vertex.h"
 #include "stages/chain_stages.h"
@@ -141,6 +142,11 @@ size_t stageChainTrace(const StepConfig& ctx, const ChainQueue& chains, const Ve
       proposals.filmX[i] = fx;
       proposals.filmY[i] = fy;
       setConnectionRay(shadowRays, i, z, eye, false, normalize(eye - z.p));
+    } else if (connectTo > j + 1) {
+      // A specular chain lies between this vertex and the fixed one: the manifold stage walks it.
+      proposals.state[i] = kProposalManifold;
+      disableRay(rays, k);
+      continue;
     } else if (connectTo > 0) {
       // Connect to the current path's fixed vertex, which stays where it is.
       // (Its columns read straight: a PathVertex copied out and read back stalls on store

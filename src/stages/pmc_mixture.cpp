@@ -79,7 +79,10 @@ void PmcMixture::choose(const StepConfig& ctx, const ChainQueue& chains, Proposa
     const bool useCaustic = caustic && uniformFloat(key, stepDim(step, kDimStrategy)) < causticProb_;
     const int c = pickComponent(weightsFor(i, chains.filmX[i], chains.filmY[i]), k,
                                 uniformFloat(key, stepDim(step, kDimComponent)));
-    proposals.mutation[i] = uint8_t(useCaustic ? ctx.causticKind() : ctx.lensKind());
+    // The manifold coin, after gamma's, so that the component's draw stays where it was.
+    proposals.mutation[i] = uint8_t(choosesManifold(ctx, chains, i, kinds, n) ? MutationKind::Manifold
+                                    : useCaustic                              ? ctx.causticKind()
+                                                                              : ctx.lensKind());
     proposals.perturbSize[i] = radii_[size_t(c)];
     proposals.component[i] = uint8_t(c);
     proposals.state[i] = kProposalWalking;

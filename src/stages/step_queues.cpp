@@ -39,6 +39,10 @@ bool pathHasZeroContribution(const StepConfig& ctx, const PathVertex* path, int 
     const float f = luminance(contributionFor(kind, ctx.measure, path, n, filmX, filmY));
     if (!(f > 0) || !std::isfinite(f)) return true;
   }
+  if (ctx.settings.manifold > 0 && manifoldChainEnd(kinds, n) > 0) {
+    const float f = luminance(manifoldContribution(ctx.measure, path, n, filmX, filmY));
+    if (!(f > 0) || !std::isfinite(f)) return true;
+  }
   return false;
 }
 

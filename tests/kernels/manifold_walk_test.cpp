@@ -72,21 +72,21 @@ class AnalyticTracer final : public ManifoldTracer {
 
 // The chain from `origin` along `direction` through surfaces that `reflects` says reflect (or
 // refract), ending on the surface after them.
-std::vector<ManifoldVertex> traceChain(const AnalyticTracer& tracer, DVec3 origin, DVec3 direction,
+ManifoldChain traceChain(const AnalyticTracer& tracer, DVec3 origin, DVec3 direction,
                                        std::vector<uint32_t> surfaces, std::vector<bool> reflects) {
-  std::vector<ManifoldVertex> shape(surfaces.size() + 1);
+  ManifoldChain shape(surfaces.size() + 1);
   shape[0].p = origin;
   shape[0].surface = 1000;
   for (size_t j = 0; j < surfaces.size(); ++j) {
     shape[j + 1].surface = surfaces[j];
     shape[j + 1].reflect = j < reflects.size() ? bool(reflects[j]) : true;
   }
-  std::vector<ManifoldVertex> chain;
+  ManifoldChain chain;
   EXPECT_TRUE(retraceChain(tracer, shape, direction, chain));
   return chain;
 }
 
-void expectOnManifold(const std::vector<ManifoldVertex>& chain) {
+void expectOnManifold(const ManifoldChain& chain) {
   for (int i = 1; i + 1 < int(chain.size()); ++i) {
     double c[2];
     manifoldConstraint(chain, i, c);
@@ -113,7 +113,7 @@ TEST(ManifoldWalk, ConstraintsVanishOnReflectedAndRefractedPaths) {
   const auto chain = traceChain(water, {0, 1, 0}, {0.6, -1, 0.2}, {1, 2}, {false});
   expectOnManifold(chain);
   // And off the manifold they do not: a refracted path's constraint with a mirror's rule.
-  std::vector<ManifoldVertex> wrong = chain;
+  ManifoldChain wrong = chain;
   wrong[1].eta = 1.0;
   double c[2];
   manifoldConstraint(wrong, 1, c);
@@ -127,7 +127,7 @@ TEST(ManifoldWalk, ConstraintBlocksAreTheConstraintsDerivatives) {
   const auto chain = traceChain(scene, {0.3, 3, 0.1}, {-0.05, -1, 0.02}, {1, 1, 2}, {false, false});
   ASSERT_EQ(chain.size(), 4u);
   // A point a little off the manifold, so that no derivative is zero by symmetry.
-  std::vector<ManifoldVertex> at = chain;
+  ManifoldChain at = chain;
   at[2].p = at[2].p + at[2].dpdu * 0.01;
   const double h = 1e-6;
   for (int i = 1; i <= 2; ++i) {
@@ -136,7 +136,7 @@ TEST(ManifoldWalk, ConstraintBlocksAreTheConstraintsDerivatives) {
     for (int which = 0; which < 3; ++which) {
       for (int axis = 0; axis < 2; ++axis) {
         auto movedBy = [&](double e) {
-          std::vector<ManifoldVertex> m = at;
+          ManifoldChain m = at;
           ManifoldVertex& v = m[size_t(i - 1 + which)];
           v.p = v.p + (axis == 0 ? v.dpdu : v.dpdv) * e;
           v.n = unit(v.n + (axis == 0 ? v.dndu : v.dndv) * e);

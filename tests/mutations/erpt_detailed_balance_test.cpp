@@ -22,6 +22,7 @@
 #include "core/rng.h"
 #include "models/surface.h"
 #include "support/erpt_world.h"
+#include "support/specular_chain_jacobian.h"
 #include "support/test_support.h"
 
 namespace erpt {
@@ -39,6 +40,7 @@ struct BalanceCase {
   // PMC-ER's mixture with region weights: radii 5/10/50 and a table far from uniform, so the
   // selection probabilities a_k(y) and a_k(z) of a move differ (by up to ~15x).
   bool pmcRegionMixture = false;
+  float manifold = 0;  // --manifold-perturbation
 };
 
 constexpr int kRegionSize = 8;
@@ -73,16 +75,21 @@ double thetaMaxOf(const ErptWorld& w, const PathVertex* p, int s, float pixels) 
 // (a walk through the glass or mirror sphere).
 void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, size_t wanted,
                           size_t wantedThroughSpecular = 0, test::ThinLens lens = {}) {
-  ErptWorld w(sceneFile, 48, 4, FilterKind::Tent, 1, lens);
+  const bool manifold = c.kind == MutationKind::Manifold;
+  ErptWorld w(sceneFile, 48, manifold ? 16 : 4, FilterKind::Tent, 1, lens);
   StepConfig ctx = w.stepContext(c.strategy);
   ctx.settings.lensShape = c.shape;
   ctx.settings.causticAngle = c.angle;
+  ctx.settings.manifold = c.manifold;
   const PmcMixture mixture = regionMixture(w.width, w.height);
   const ProposalPolicy* chooser = c.pmcRegionMixture ? &mixture : nullptr;
   ChainQueues forward(4096);
   // Seeds from all over the image (the spheres fill its lower half); an odd stride, so that
   // seeds recorded in pairs (a next-event and a BSDF-sampled one) are both taken.
-  const size_t loaded = forward.loadSeeds(w, 10, 1.0f, 4, std::max<size_t>(1, w.seeds.size() / 4096) | 1);
+  // The manifold's paths are a small share of the seeds: only those, from all over the image.
+  const auto manifoldPaths = [](const uint8_t* kinds, int n) { return manifoldChainEnd(kinds, n) > 0; };
+  const size_t loaded = forward.loadSeeds(w, 10, 1.0f, 4, manifold ? 1 : std::max<size_t>(1, w.seeds.size() / 4096) | 1,
+                                          manifold ? +manifoldPaths : nullptr);
   ASSERT_GT(loaded, 0u);
   forward.propose(w, ctx, chooser);
   const ChainQueue y = forward.chains;
@@ -103,7 +110,7 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
     const int walkFirst = p.walk[i] > 0 ? p.regenFirst[i] : p.regenFirst[i] + 1;
     const int walkLast = p.walk[i] > 0 ? p.regenLast[i] - 1 : p.regenLast[i];
     for (int j = walkFirst; j <= walkLast; ++j) perturbedOnTheWay |= kindAt(y.signature[i], j) == kNonSpecularVertex;
-    if (perturbedOnTheWay) continue;
+    if (perturbedOnTheWay && !manifold) continue;  // (the manifold's walks are deterministic)
     const size_t k = from.size();
     from.push_back(i);
     back.chains.copyRow(k, y, i);
@@ -118,6 +125,14 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
     back.proposals.copyRow(k, p, i);  // same kind, size and regenerated range
     back.proposals.state[k] = kProposalWalking;
     back.proposals.reason[k] = kRejectNone;
+    back.proposals.measureRatio[k] = 1;
+    if (manifold) {  // the start's plan: the eye walk ends at b, the manifold stage goes on to c
+      uint8_t kinds[kMaxChainVertices];
+      unpackSignature(y.signature[i], n, kinds);
+      int b = 0;
+      manifoldChainEnd(kinds, n, &b);
+      back.proposals.regenLast[k] = int8_t(b);
+    }
     back.proposals.filmX[k] = y.filmX[i];
     back.proposals.filmY[k] = y.filmY[i];
     if (p.walk[i] > 0) {
@@ -150,8 +165,8 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
   step.accept(back, backCounters);
 
   PathVertex py[kMaxChainVertices], pz[kMaxChainVertices];
-  std::vector<double> errors, distances, eyeAngles;
-  size_t invalid = 0, throughSpecular = 0;
+  std::vector<double> errors, distances, eyeAngles, chainRatios;
+  size_t invalid = 0, throughSpecular = 0, unstable = 0, seenThroughSpecular = 0, longChains = 0;
   for (size_t k = 0; k < from.size(); ++k) {
     const size_t i = from[k];
     if (back.proposals.state[k] != kProposalComplete) {
@@ -173,8 +188,27 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
     // point) through it, the ray points at vertex 1.
     const Camera::Ray eyeRay = w.camera->generateRayFrom(pz[0].p, zChains.filmX[k], zChains.filmY[k]);
     eyeAngles.push_back(double(length(eyeRay.direction - normalize(pz[1].p - pz[0].p))));  // ~ the angle
-    const double fy = luminance(contributionFor(c.kind, mc, py, n, y.filmX[i], y.filmY[i]));
-    const double fz = luminance(contributionFor(c.kind, mc, pz, n, zChains.filmX[k], zChains.filmY[k]));
+    double fy = luminance(contributionFor(c.kind, mc, py, n, y.filmX[i], y.filmY[i]));
+    double fz = luminance(contributionFor(c.kind, mc, pz, n, zChains.filmX[k], zChains.filmY[k]));
+    if (manifold) {
+      // f's factor |d omega_b / dA_c|, measured here by differences of traced rays (not by the
+      // stage's generalised geometry term, whose ratio the acceptance used).
+      const int end = forward.proposals.connectTo[i];
+      int first = 0;
+      uint8_t kinds[kMaxChainVertices];
+      unpackSignature(y.signature[i], n, kinds);
+      manifoldChainEnd(kinds, n, &first);
+      const auto dy = test::stableSolidAnglePerArea(w, py, first, end), dz = test::stableSolidAnglePerArea(w, pz, first, end);
+      if (!dy || !dz) {
+        ++unstable;
+        continue;
+      }
+      chainRatios.push_back(std::abs(double(forward.proposals.measureRatio[i]) / (*dz / *dy) - 1));
+      seenThroughSpecular += first >= 2;  // the caustic seen through glass or in a mirror
+      longChains += end - first >= 3;     // two or more specular vertices walked
+      fy *= *dy;
+      fz *= *dz;
+    }
     double tYZ = 1, tZY = 1;  // symmetric kinds: the same constant both ways
     if (c.kind == MutationKind::CausticVeach) {
       const int s = forward.proposals.regenLast[i] + 1;
@@ -196,6 +230,17 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
   std::printf("%s: %zu reverse moves (%zu through specular vertices), %zu invalid; |flow ratio - 1| median %.2e, "
               "90%% %.2e, worst %.2e\n",
               c.name, from.size(), throughSpecular, invalid, median, p90, errors.back());
+  if (manifold) {
+    // The stage's ratio of the chains' |d omega / dA| against the differences' ratio.
+    ASSERT_GE(chainRatios.size(), from.size() / 2) << unstable << " moves left out: differences unstable";
+    std::sort(chainRatios.begin(), chainRatios.end());
+    const double r50 = chainRatios[chainRatios.size() / 2], r90 = chainRatios[chainRatios.size() * 9 / 10];
+    std::printf("  chain factor ratio vs differences (%zu moves, %zu left out): |ratio - 1| median %.2e, 90%% %.2e; "
+                "%zu moves seen through a specular vertex, %zu walking two or more\n",
+                chainRatios.size(), unstable, r50, r90, seenThroughSpecular, longChains);
+    EXPECT_LT(r50, 0.01) << c.name;
+    EXPECT_LT(r90, 0.05) << c.name;
+  }
   EXPECT_GE(throughSpecular, wantedThroughSpecular) << c.name;
   std::sort(distances.begin(), distances.end());
   const double d50 = distances[distances.size() / 2], d99 = distances[distances.size() * 99 / 100];
@@ -254,6 +299,23 @@ const BalanceCase kPmcLens{"PMC-ER lens (disk, region mixture)", MutationStrateg
                            CausticAngle::Veach, MutationKind::LensDisk, true};
 const BalanceCase kPmcCaustic{"PMC-ER caustic (Veach, region mixture)", MutationStrategy::Mixed, LensShape::Disk,
                               CausticAngle::Veach, MutationKind::CausticVeach, true};
+// The manifold perturbation (docs/manifold.md): its film disk is symmetric, its walks are
+// deterministic and checked for reversibility by the stage, and f carries the chains'
+// |d omega_b / dA_c|, which the check measures by differences of traced rays. Paths D S...S L
+// through the glass sphere and S D S...S L seen in the mirror sphere of the default scene;
+// a glass sphere's caustic seen directly and through the sphere (caustic-scene.xml).
+const BalanceCase kManifold{"manifold", MutationStrategy::Paper, LensShape::Square, CausticAngle::Erpt,
+                            MutationKind::Manifold, false, 1.0f};
+const BalanceCase kPmcManifold{"PMC-ER manifold (region mixture)", MutationStrategy::Mixed, LensShape::Disk,
+                               CausticAngle::Veach, MutationKind::Manifold, true, 1.0f};
+TEST(ErptDetailedBalance, ManifoldThroughGlassAndMirror) { checkDetailedBalance(defaultScene(), kManifold, 100, 100); }
+TEST(ErptDetailedBalance, ManifoldGlassSphereCaustic) {
+  checkDetailedBalance(test::sourceDir() + "/tests/data/caustic-scene.xml", kManifold, 100, 100);
+}
+TEST(ErptDetailedBalance, PmcRegionMixtureManifoldThroughGlassAndMirror) {
+  checkDetailedBalance(defaultScene(), kPmcManifold, 100, 100);
+}
+
 TEST(ErptDetailedBalance, PmcRegionMixtureLensCornellBox) { checkDetailedBalance(cornell(), kPmcLens, 100); }
 TEST(ErptDetailedBalance, PmcRegionMixtureCausticCornellBox) { checkDetailedBalance(cornell(), kPmcCaustic, 300); }
 TEST(ErptDetailedBalance, PmcRegionMixtureCausticThroughGlassAndMirror) {

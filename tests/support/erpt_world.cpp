@@ -43,11 +43,14 @@ int ErptWorld::seedPath(size_t seed, PathVertex* out) const {
 }
 
 size_t ChainQueues::loadSeeds(const ErptWorld& w, uint32_t chainLength, float energyPerStep, uint64_t keySeed,
-                              size_t stride) {
+                              size_t stride, bool (*keep)(const uint8_t* kinds, int n)) {
   size_t slot = 0;
+  uint8_t kinds[kMaxChainVertices];
   for (size_t s = 0; s < w.seeds.size() && slot < chains.size(); s += stride) {
-    if (w.seeds.seeds.vertexCount[s] > uint32_t(kMaxChainVertices) || !(luminance(w.seeds.contribution(s)) > 0))
-      continue;
+    const uint32_t n = w.seeds.seeds.vertexCount[s];
+    if (n > uint32_t(kMaxChainVertices) || !(luminance(w.seeds.contribution(s)) > 0)) continue;
+    for (uint32_t j = 0; j < n; ++j) kinds[j] = w.seeds.vertices.kind[w.seeds.seeds.vertexBegin[s] + j];
+    if (keep && !keep(kinds, int(n))) continue;
     loadChainFromSeed(chains, chainVertices, slot++, w.seeds, s, streamKey(keySeed, s, 0), chainLength, energyPerStep);
   }
   return slot;

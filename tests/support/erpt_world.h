@@ -43,9 +43,10 @@ struct ChainQueues : StepQueues {
   // Starts chains in slots 0, 1, ... at the world's seeds in order, skipping seeds too long
   // for a chain or without energy, until the queue is full; chain keys streamKey(keySeed,
   // seed, 0). Returns how many were loaded.
-  // `stride` > 1 takes every stride-th seed (spreading the chains over the image).
+  // `stride` > 1 takes every stride-th seed (spreading the chains over the image); `keep`, when
+  // given, takes only the seeds whose signature it accepts.
   size_t loadSeeds(const ErptWorld& world, uint32_t chainLength, float energyPerStep, uint64_t keySeed,
-                   size_t stride = 1);
+                   size_t stride = 1, bool (*keep)(const uint8_t* kinds, int n) = nullptr);
   // ChainStep::propose: mutate -> (intersect -> trace)* -> connect; stops before accept.
   // `chooser`: the mutate stage's choice (null: ERPT's).
   void propose(const ErptWorld& world, const StepConfig& ctx, const ProposalPolicy* chooser = nullptr);

@@ -213,7 +213,8 @@ IntegratorModule erptModule() {
                              "at most this many chains per seed; a seed that would start more starts this many, each "
                              "depositing more per step (same total)",
                              1, 1000000, [](auto& s) -> auto& { return erptOf(s).maxChainsPerSeed; }),
-               directSamplesOption(), seedsOption(), bidirectionalMutationOption()};
+               directSamplesOption(), seedsOption(), bidirectionalMutationOption(),
+               manifoldPerturbationOption()};
   addOptions(m.options, perturbationOptions());
   addOptions(m.options, depositOptions());
   m.options.push_back(chainMapsOption());

@@ -353,6 +353,7 @@ IntegratorModule mltModule() {
   // No sample passes (no checkpoints), its own chain length and expected-value deposits, and
   // a bootstrap instead of ERPT's pilot.
   m.options = {mutationsPerPixelOption(), directSamplesOption(), seedsOption(), bidirectionalMutationOption(),
+               manifoldPerturbationOption(),
                realOption("large-step-prob",
                           "probability that a chain step is a large step, a fresh path-tracer sample through a "
                           "uniform pixel",

@@ -285,7 +285,7 @@ IntegratorModule pmcErModule() {
                  "once the pool is used up, the population iterates until a member holds at most this share of "
                  "its energy, then deposits the rest where it stands (1: at once)",
                  0, 1, [](auto& s) -> auto& { return pmcOf(s).drainRemainder; }, /*minOpen=*/true),
-      directSamplesOption(), seedsOption()};
+      directSamplesOption(), seedsOption(), manifoldPerturbationOption()};
   addOptions(m.options, depositOptions());
   m.options.push_back(chainMapsOption());
   m.validate = [](const RenderSettings& s) { validatePmcSettings(pmcOf(s), chainOf(s)); };
