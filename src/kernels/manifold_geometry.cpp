@@ -24,12 +24,12 @@ double generalizedGeometry(const ManifoldChain& chain) {
   if (n == 1) {
     dx1[0] = xn.dpdu, dx1[1] = xn.dpdv;
   } else {
-    double moves[2 * kMaxManifoldVertices];
-    for (int axis = 0; axis < 2; ++axis) {
-      const double unitMove[2] = {axis == 0 ? 1.0 : 0.0, axis == 0 ? 0.0 : 1.0};
-      if (!manifoldTangentMoves(chain, unitMove, moves)) return 0;
-      dx1[axis] = chain[1].dpdu * moves[0] + chain[1].dpdv * moves[1];
-    }
+    double movesU[2 * kMaxManifoldVertices], movesV[2 * kMaxManifoldVertices];
+    const double unitMoves[2][2] = {{1, 0}, {0, 1}};
+    double* const moves[2] = {movesU, movesV};
+    if (!manifoldTangentMoves(chain, 2, unitMoves, moves)) return 0;
+    dx1[0] = chain[1].dpdu * movesU[0] + chain[1].dpdv * movesU[1];
+    dx1[1] = chain[1].dpdu * movesV[0] + chain[1].dpdv * movesV[1];
   }
   // d omega_0 = (I - w w^T) d x_1 / r, in an orthonormal basis (a, b) of w's tangent plane.
   const DVec3 helper = std::abs(w.x) < 0.9 ? DVec3{1, 0, 0} : DVec3{0, 1, 0};

@@ -7,74 +7,56 @@ namespace erpt {
 
 namespace {
 
-// A value and its derivatives along two directions (forward-mode automatic differentiation):
-// the constraint's formula evaluated once on these gives its value and one 2x2 Jacobian block.
-struct Dual {
-  double v = 0, d0 = 0, d1 = 0;
-};
-Dual operator+(Dual a, Dual b) { return {a.v + b.v, a.d0 + b.d0, a.d1 + b.d1}; }
-Dual operator-(Dual a, Dual b) { return {a.v - b.v, a.d0 - b.d0, a.d1 - b.d1}; }
-Dual operator*(Dual a, Dual b) { return {a.v * b.v, a.d0 * b.v + a.v * b.d0, a.d1 * b.v + a.v * b.d1}; }
-Dual operator/(Dual a, Dual b) {
-  const double inv = 1.0 / b.v;
-  return {a.v * inv, (a.d0 - a.v * inv * b.d0) * inv, (a.d1 - a.v * inv * b.d1) * inv};
-}
-Dual sqrtOf(Dual a) {
-  const double s = std::sqrt(a.v);
-  const double k = s > 0 ? 0.5 / s : 0.0;
-  return {s, a.d0 * k, a.d1 * k};
-}
-Dual constant(double v) { return {v, 0, 0}; }
-
-struct DualVec {
-  Dual x, y, z;
-};
-DualVec operator+(DualVec a, DualVec b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-DualVec operator-(DualVec a, DualVec b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-DualVec operator*(DualVec a, Dual s) { return {a.x * s, a.y * s, a.z * s}; }
-Dual dotOf(DualVec a, DualVec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-DualVec crossOf(DualVec a, DualVec b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-DualVec normalized(DualVec a) {
-  const Dual inv = constant(1.0) / sqrtOf(dotOf(a, a));
-  return a * inv;
-}
-DualVec constantVec(DVec3 a) { return {constant(a.x), constant(a.y), constant(a.z)}; }
-
-// `base + u along + v across`, u and v the two derivative directions when `moved`.
-DualVec moved(DVec3 base, DVec3 along, DVec3 across, bool isMoved) {
-  DualVec out = constantVec(base);
-  if (!isMoved) return out;
-  out.x.d0 = along.x, out.y.d0 = along.y, out.z.d0 = along.z;
-  out.x.d1 = across.x, out.y.d1 = across.y, out.z.d1 = across.z;
-  return out;
-}
-
 double norm(DVec3 a) { return std::sqrt(dot(a, a)); }
 DVec3 unit(DVec3 a) { return a * (1.0 / norm(a)); }
 
 // The index of refraction on direction w's side of vertex v's surface.
 double iorOnSide(const ManifoldVertex& v, DVec3 w) { return dot(w, v.n) >= 0 ? 1.0 : v.eta; }
 
-// Constraint i with vertex `which` (0: x_{i-1}, 1: x_i, 2: x_{i+1}; -1: none) moved along its
-// (u, v): its value and the derivatives of that move.
-void constraintWith(const ManifoldChain& chain, int i, int which, Dual c[2]) {
+// The derivative of normalize(v) along dv, with u = v / |v| and len = |v|: dv's part
+// perpendicular to u, over len.
+DVec3 normalizedAlong(DVec3 u, double len, DVec3 dv) { return (dv - u * dot(u, dv)) * (1.0 / len); }
+
+// Constraint i's value and its 2x2 blocks (rows: the constraint's two components; columns: the
+// moves along dpdu, dpdv) for moves of x_{i-1} (a), x_i (b) and x_{i+1} (c), by the chain rule
+// through the normalisations (checked against central differences by the tests). With
+// wi, wo the unit directions to the neighbours, h = normalize(eta_in wi + eta_out wo) and the
+// tangent frame s = normalize(dpdu - n (n . dpdu)), t = n x s of the vertex's normal n:
+// c = (h . s, h . t). A neighbour's move turns wi or wo only; the vertex's own move turns both
+// and its normal (its curvature: dndu, dndv), and with the normal its frame.
+void constraintAndBlocks(const ManifoldChain& chain, int i, double value[2], double* a, double* b, double* c) {
   const ManifoldVertex &prev = chain[size_t(i - 1)], &cur = chain[size_t(i)], &next = chain[size_t(i + 1)];
-  const DualVec a = moved(prev.p, prev.dpdu, prev.dpdv, which == 0);
-  const DualVec b = moved(next.p, next.dpdu, next.dpdv, which == 2);
-  const DualVec p = moved(cur.p, cur.dpdu, cur.dpdv, which == 1);
-  // The normal turns with the vertex's move (its curvature); the tangent frame follows it.
-  const DualVec n = normalized(moved(cur.n, cur.dndu, cur.dndv, which == 1));
-  const DualVec du = constantVec(cur.dpdu);
-  const DualVec s = normalized(du - n * dotOf(n, du));
-  const DualVec t = crossOf(n, s);
-  const DualVec wi = normalized(a - p), wo = normalized(b - p);
+  const double nLen = norm(cur.n);
+  const DVec3 n = cur.n * (1.0 / nLen);
+  const DVec3 sRaw = cur.dpdu - n * dot(n, cur.dpdu);
+  const double sLen = norm(sRaw);
+  const DVec3 s = sRaw * (1.0 / sLen), t = cross(n, s);
+  const DVec3 toPrev = prev.p - cur.p, toNext = next.p - cur.p;
+  const double aLen = norm(toPrev), bLen = norm(toNext);
+  const DVec3 wi = toPrev * (1.0 / aLen), wo = toNext * (1.0 / bLen);
   // The sides, and so the indices of refraction, do not change under a small move.
-  const double etaIn = iorOnSide(cur, prev.p - cur.p), etaOut = iorOnSide(cur, next.p - cur.p);
-  const DualVec h = normalized(wi * constant(etaIn) + wo * constant(etaOut));
-  c[0] = dotOf(h, s);
-  c[1] = dotOf(h, t);
+  const double etaIn = iorOnSide(cur, toPrev), etaOut = iorOnSide(cur, toNext);
+  const DVec3 hRaw = wi * etaIn + wo * etaOut;
+  const double hLen = norm(hRaw);
+  const DVec3 h = hRaw * (1.0 / hLen);
+  value[0] = dot(h, s);
+  value[1] = dot(h, t);
+  if (!a) return;
+  for (int axis = 0; axis < 2; ++axis) {
+    // x_{i-1} moves: wi turns.
+    const DVec3 dhPrev = normalizedAlong(h, hLen, normalizedAlong(wi, aLen, axis ? prev.dpdv : prev.dpdu) * etaIn);
+    a[axis] = dot(dhPrev, s), a[2 + axis] = dot(dhPrev, t);
+    // x_{i+1} moves: wo turns.
+    const DVec3 dhNext = normalizedAlong(h, hLen, normalizedAlong(wo, bLen, axis ? next.dpdv : next.dpdu) * etaOut);
+    c[axis] = dot(dhNext, s), c[2 + axis] = dot(dhNext, t);
+    // x_i moves: both directions turn, and so do the normal and the frame (dpdu is fixed).
+    const DVec3 e = (axis ? cur.dpdv : cur.dpdu) * -1.0;
+    const DVec3 dh = normalizedAlong(h, hLen, normalizedAlong(wi, aLen, e) * etaIn + normalizedAlong(wo, bLen, e) * etaOut);
+    const DVec3 dn = normalizedAlong(n, nLen, axis ? cur.dndv : cur.dndu);
+    const DVec3 ds = normalizedAlong(s, sLen, (dn * dot(n, cur.dpdu) + n * dot(dn, cur.dpdu)) * -1.0);
+    const DVec3 dt = cross(dn, s) + cross(n, ds);
+    b[axis] = dot(dh, s) + dot(h, ds), b[2 + axis] = dot(dh, t) + dot(h, dt);
+  }
 }
 
 // 2x2 matrices, row-major.
@@ -122,61 +104,64 @@ bool scatterAtManifoldVertex(const ManifoldVertex& v, DVec3 incoming, DVec3& out
 }
 
 void manifoldConstraint(const ManifoldChain& chain, int i, double c[2]) {
-  Dual d[2];
-  constraintWith(chain, i, -1, d);
-  c[0] = d[0].v, c[1] = d[1].v;
+  constraintAndBlocks(chain, i, c, nullptr, nullptr, nullptr);
 }
 
 void manifoldConstraintBlocks(const ManifoldChain& chain, int i, double a[4], double b[4], double c[4]) {
-  double* blocks[3] = {a, b, c};
-  for (int which = 0; which < 3; ++which) {
-    Dual d[2];
-    constraintWith(chain, i, which, d);
-    double* out = blocks[which];
-    out[0] = d[0].d0, out[1] = d[0].d1, out[2] = d[1].d0, out[3] = d[1].d1;
-  }
+  double value[2];
+  constraintAndBlocks(chain, i, value, a, b, c);
 }
 
-bool manifoldTangentMoves(const ManifoldChain& chain, const double endpointMove[2], double* moves) {
+bool manifoldTangentMoves(const ManifoldChain& chain, int count, const double (*endpointMoves)[2],
+                          double* const* moves) {
   const int n = int(chain.size()) - 1;
   const int k = n - 1;  // specular vertices x_1 .. x_{n-1}
-  if (k <= 0) return false;
+  if (k <= 0 || count < 1 || count > 2) return false;
   // Rows i = 1 .. k: A_i d_{i-1} + B_i d_i + C_i d_{i+1} = 0, with d_0 = 0 and d_n given, by
   // block elimination (Thomas): C'_i = D_i^-1 C_i, r'_i = D_i^-1 (r_i - A_i r'_{i-1}),
-  // D_i = B_i - A_i C'_{i-1}; then back substitution.
+  // D_i = B_i - A_i C'_{i-1}; then back substitution. One elimination serves every
+  // right-hand side.
   std::array<M2, kMaxManifoldVertices> upper;
-  std::array<double, 2 * kMaxManifoldVertices> rhs{};
+  std::array<double, 2 * kMaxManifoldVertices> rhs[2] = {};
   for (int i = 1; i <= k; ++i) {
     double a[4], b[4], c[4];
     manifoldConstraintBlocks(chain, i, a, b, c);
     M2 diag = fromRows(b);
-    double r[2] = {0, 0};
-    if (i == k) {  // the endpoint's move, to the right-hand side
-      apply(fromRows(c), endpointMove, r);
-      r[0] = -r[0], r[1] = -r[1];
+    double r[2][2] = {};
+    for (int m = 0; m < count; ++m) {
+      if (i == k) {  // the endpoint's move, to the right-hand side
+        apply(fromRows(c), endpointMoves[m], r[m]);
+        r[m][0] = -r[m][0], r[m][1] = -r[m][1];
+      }
+      if (i > 1) {
+        double carried[2];
+        apply(fromRows(a), &rhs[m][size_t(2 * (i - 2))], carried);
+        r[m][0] -= carried[0], r[m][1] -= carried[1];
+      }
     }
-    if (i > 1) {
-      const M2 lower = fromRows(a);
-      diag = sub(diag, mul(lower, upper[size_t(i - 2)]));
-      double carried[2];
-      apply(lower, &rhs[size_t(2 * (i - 2))], carried);
-      r[0] -= carried[0], r[1] -= carried[1];
-    }
+    if (i > 1) diag = sub(diag, mul(fromRows(a), upper[size_t(i - 2)]));
     M2 inv;
     if (!inverse(diag, inv)) return false;
     upper[size_t(i - 1)] = mul(inv, fromRows(c));
-    apply(inv, r, &rhs[size_t(2 * (i - 1))]);
+    for (int m = 0; m < count; ++m) apply(inv, r[m], &rhs[m][size_t(2 * (i - 1))]);
   }
-  for (int i = k; i >= 1; --i) {
-    double* d = &moves[size_t(2 * (i - 1))];
-    d[0] = rhs[size_t(2 * (i - 1))], d[1] = rhs[size_t(2 * (i - 1) + 1)];
-    if (i < k) {
-      double next[2];
-      apply(upper[size_t(i - 1)], &moves[size_t(2 * i)], next);
-      d[0] -= next[0], d[1] -= next[1];
+  for (int m = 0; m < count; ++m) {
+    for (int i = k; i >= 1; --i) {
+      double* d = &moves[m][size_t(2 * (i - 1))];
+      d[0] = rhs[m][size_t(2 * (i - 1))], d[1] = rhs[m][size_t(2 * (i - 1) + 1)];
+      if (i < k) {
+        double next[2];
+        apply(upper[size_t(i - 1)], &moves[m][size_t(2 * i)], next);
+        d[0] -= next[0], d[1] -= next[1];
+      }
     }
   }
   return true;
+}
+
+bool manifoldTangentMoves(const ManifoldChain& chain, const double endpointMove[2], double* moves) {
+  const double one[1][2] = {{endpointMove[0], endpointMove[1]}};
+  return manifoldTangentMoves(chain, 1, one, &moves);
 }
 
 bool retraceChain(const ManifoldTracer& tracer, const ManifoldChain& chain, DVec3 direction,

@@ -119,6 +119,9 @@ void manifoldConstraintBlocks(const ManifoldChain& chain, int i, double a[4], do
 // the block tridiagonal solve of the paper. False when the system is singular there.
 // `moves` holds 2 (n - 1) numbers: (du, dv) of x_1, then of x_2, ...
 bool manifoldTangentMoves(const ManifoldChain& chain, const double endpointMove[2], double* moves);
+// The same for one or two endpoint moves at once (one elimination): moves[m] for endpointMoves[m].
+bool manifoldTangentMoves(const ManifoldChain& chain, int count, const double (*endpointMoves)[2],
+                          double* const* moves);
 
 // Retraces a chain: from `origin`, a ray along `direction`; at every specular vertex the
 // chain's interaction (reflection, or refraction with its eta) gives the next ray. Fills the

@@ -228,6 +228,11 @@ py::dict statsOf(const RenderSettings& s, const RenderStats& stats) {
     }
     d["proposed"] = proposed;
     d["accepted"] = accepted;
+    py::dict inPlace, rejected;
+    for (int r = 0; r < kInPlaceReasonCount; ++r) inPlace[inPlaceReasonName(InPlaceReason(r))] = e.inPlace[r];
+    for (int r = 1; r < kRejectReasonCount; ++r) rejected[rejectReasonName(RejectReason(r))] = e.rejected[r];
+    d["in_place"] = inPlace;
+    d["rejected"] = rejected;
   }
   return d;
 }

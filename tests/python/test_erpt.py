@@ -341,3 +341,19 @@ def test_tonemap_and_the_png_a_notebook_shows(scene, tmp_path):
     assert mapped.dtype == np.uint8 and mapped.shape == (10, 12, 3)
     linear = np.array([[[0.0, 0.0031308, 0.5]], [[1.0, 4.0, np.nan]]], dtype=np.float32)
     assert erpt.tonemap(linear).tolist() == [[[0, 10, 188]], [[255, 255, 0]]]
+
+
+def test_the_manifold_perturbation_is_an_option_of_the_chain_integrators():
+    # A glass sphere's caustic on a floor: paths E D S S L, which the manifold perturbation walks.
+    caustic = erpt.load_scene(str(ROOT / "tests" / "data" / "caustic-scene.xml"))
+    for integrator, options in (("erpt", {"spp": 2}), ("pmc-er", {"spp": 2}), ("mlt", {"spp": 2})):
+        s = erpt.render(caustic, integrator, width=24, height=24, manifold_perturbation=1, **options).stats
+        assert s["proposed"].get("manifold", 0) > 0, integrator
+        assert s["accepted"]["manifold"] > 0, integrator
+        assert set(s["in_place"]) >= {"no mutation applies", "too long: folded tail, nothing before it moves"}
+        assert "manifold walk did not converge" in s["rejected"]
+    for integrator in ("path", "bdpt", "direct"):
+        with pytest.raises(erpt.Error, match=r"--manifold-perturbation does not apply to --integrator " + integrator):
+            erpt.render(caustic, integrator, spp=1, width=8, height=8, manifold_perturbation=0.5)
+    with pytest.raises(erpt.Error, match=r"--manifold-perturbation must be"):
+        erpt.render(caustic, "erpt", spp=1, width=8, height=8, manifold_perturbation=1.5)
