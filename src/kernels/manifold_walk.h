@@ -111,7 +111,7 @@ void manifoldConstraint(const ManifoldChain& chain, int i, double c[2]);
 // The 2x2 blocks of constraint i's derivatives with respect to the (u, v) moves
 // x + u dpdu + v dpdv of its vertex's neighbours and itself: d c_i / d x_{i-1} (a), d x_i (b),
 // d x_{i+1} (c), each row-major [dc0/du, dc0/dv, dc1/du, dc1/dv]. Exact first derivatives
-// (forward-mode automatic differentiation over the same formula as manifoldConstraint).
+// (the chain rule through the formula's normalisations; tested against central differences).
 void manifoldConstraintBlocks(const ManifoldChain& chain, int i, double a[4], double b[4], double c[4]);
 
 // The moves (du, dv) of the specular vertices x_1 .. x_{n-1} that keep every constraint at
