@@ -27,6 +27,7 @@ struct ErptRun {
   bool expected = false;
   FilterKind filter = FilterKind::Box;
   int maxConsecutive = 0, pmFilterRadius = -1;  // noise filters, off
+  float manifold = 0;  // --manifold-perturbation
 };
 
 RgbImage renderErptImage(const Scene& scene, const ErptRun& r, RenderStats* statsOut = nullptr) {
@@ -47,6 +48,7 @@ RgbImage renderErptImage(const Scene& scene, const ErptRun& r, RenderStats* stat
   chainOf(s).expectedDeposit = r.expected;
   chainOf(s).maxConsecutive = r.maxConsecutive;
   chainOf(s).pmFilterRadius = r.pmFilterRadius;
+  chainOf(s).manifoldPerturbation = r.manifold;
   RenderStats stats;
   RgbImage img = render(scene, s, stats);
   EXPECT_EQ(stats.invalidSamples, 0u);
@@ -224,6 +226,14 @@ TEST(Erpt, SameImageForAnyThreadCount) {
 // The same with a filter wider than a pixel (deposits reach up to four pixels), expected-value
 // deposits and both noise filters (per-chain run state, the proposal tally); proposals walking
 // specular chains go through the dense batches of later bounces in both.
+// The manifold perturbation's walks run per range of its proposals, each with its own ray
+// streams and scratch: their results must not depend on how the ranges fall on threads.
+TEST(Erpt, SameImageForAnyThreadCountWithManifoldPerturbation) {
+  ErptRun r = smallDefaultSceneRun();
+  r.manifold = 0.5f;
+  expectSameImageAtOneAndTwoThreads(r);
+}
+
 TEST(Erpt, SameImageForAnyThreadCountWithTentFilterAndNoiseFilters) {
   ErptRun r = smallDefaultSceneRun();
   r.filter = FilterKind::Tent;
