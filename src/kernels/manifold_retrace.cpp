@@ -43,7 +43,6 @@ bool manifoldVertexAlong(const Scene& scene, uint32_t primitive, DVec3 o, DVec3 
     const double r1 = dot(rel, e1), r2 = dot(rel, e2);
     const double b1 = (g22 * r1 - g12 * r2) / det, b2 = (g11 * r2 - g12 * r1) / det;
     out = manifoldTriangleVertex(mesh, primitive, b1, b2);
-    out.ng = unit(face);
     out.hitU = float(b1);
     out.hitV = float(b2);
   } else if (scene.isSphere(primitive)) {
@@ -58,7 +57,6 @@ bool manifoldVertexAlong(const Scene& scene, uint32_t primitive, DVec3 o, DVec3 
       t = std::abs(-b - h - tHint) <= std::abs(-b + h - tHint) ? -b - h : -b + h;
     }
     out = manifoldSphereVertex(spheres, i, o + d * t);
-    out.ng = out.n;
     sphereCoordinates(spheres, i, f3(out.p), out.hitU, out.hitV);
   } else {
     return false;  // instanced triangles: their prototypes' normals live in group space

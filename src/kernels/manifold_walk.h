@@ -52,7 +52,6 @@ struct ManifoldVertex {
   // coordinates, from which the renderer's own surface point is made; ~0u for analytic tests.
   uint32_t primitive = ~0u;
   float hitU = 0, hitV = 0;
-  DVec3 ng;  // unit geometric normal (which side a ray leaving it starts on)
 };
 
 // Most vertices a chain may have (its two ends included).

@@ -54,8 +54,8 @@ struct WalkScratch {
 };
 
 // The fixed end c as the walk sees it: its position and the normal of the generalised geometry
-// term's cosine (a point light's: towards the chain, so the cosine is 1, and no surface to push
-// rays off).
+// term's cosine (the geometric one; a point light's points towards the chain, so that its
+// cosine is 1).
 ManifoldVertex fixedEnd(const MeasureContext& mc, const PathVertex& end, const PathVertex& next) {
   ManifoldVertex v;
   v.p = d3(end.p);
@@ -63,7 +63,7 @@ ManifoldVertex fixedEnd(const MeasureContext& mc, const PathVertex& end, const P
     const DVec3 d = d3(next.p) - v.p;
     v.n = d * (1.0 / norm(d));
   } else {
-    v.n = v.ng = d3(end.ng);
+    v.n = d3(end.ng);
   }
   return v;
 }
