@@ -98,10 +98,13 @@ void StreamRetracer::locate(std::vector<ManifoldChain>& chains, size_t count, st
       ManifoldVertex hit;
       if (hits_.geomID[row] == kNoHit || hits_.geomID[row] == kRefusedRay ||
           !manifoldVertexAlong(scene_, hits_.primID[row], origin, directions_[row], queue_.tfar[row], hit) ||
-          norm(hit.p - sought) > 100 * manifoldTolerance(sought))
+          norm(hit.p - sought) > 100 * manifoldTolerance(sought)) {
         ok[k] = 0;
-      else
+      } else {
+        hit.reflect = chain[j + 1].reflect;
+        hit.eta = chain[j + 1].eta;
         chain[j + 1] = hit;
+      }
       origin = sought;
     }
   }

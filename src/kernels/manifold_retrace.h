@@ -31,9 +31,8 @@ class StreamRetracer {
   // Finds the chains the renderer already holds, with the walk's data. chains[k][0] is the
   // fixed end as the caller describes it; its other vertices are sought where their `p` says,
   // by rays from each point to the next (one pass for all segments), and replaced by what the
-  // rays hit. The caller sets every vertex's `reflect` and `eta` afterwards. ok[k]: every
-  // segment hit a surface the walk can differentiate, within 100 manifoldTolerance of the point
-  // sought.
+  // rays hit, keeping the `reflect` and `eta` the caller gave them. ok[k]: every segment hit a
+  // surface the walk can differentiate, within 100 manifoldTolerance of the point sought.
   void locate(std::vector<ManifoldChain>& chains, size_t count, std::vector<uint8_t>& ok);
 
   // Runs every walk to its end (startManifoldWalk already called): each Newton step of all the

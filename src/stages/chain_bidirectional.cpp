@@ -216,9 +216,7 @@ void finishOne(const StepConfig& ctx, const ChainQueue& chains, const VertexQueu
 
 uint64_t stageChainBidirectional(const Tracer& tracer, const StepConfig& ctx, StepQueues& q, size_t grain,
                                  StageTimes* times) {
-  std::vector<uint32_t> slots;
-  for (size_t i = 0; i < q.chains.size(); ++i)
-    if (q.proposals.state[i] == kProposalBidirectional) slots.push_back(uint32_t(i));
+  const std::vector<uint32_t> slots = slotsInState(q.proposals, kProposalBidirectional);
   if (slots.empty()) return 0;
   forEachRange("bidirectional start", slots.size(), grain, [&](IndexRange r) {
     for (size_t k = r.begin; k < r.end; ++k)

@@ -40,6 +40,7 @@ struct ChainWalks {
   int b, c;
   ManifoldChain chainY;
   ManifoldWalk forward, back;
+  Vec3 ngB;                // y's geometric normal at b
   double solidAngleY = 0;  // |d omega_b / dA_c| at y
   bool ok = true;
 };
@@ -68,18 +69,14 @@ ManifoldVertex fixedEnd(const MeasureContext& mc, const PathVertex& end, const P
   return v;
 }
 
-// The chain's interactions at its specular vertices, as y has them: reflection or refraction,
-// and the index of refraction. False where the walk has no rule (a thin sheet's transmission,
-// which does not bend, or a material without a smooth dielectric lobe that transmits).
-bool setInteractions(const Scene& scene, const PathVertex* y, int b, int c, ManifoldChain& chain) {
-  for (int j = b + 1; j < c; ++j) {
-    ManifoldVertex& v = chain[size_t(c - j)];
-    const Material& m = scene.materials[size_t(y[j].material)];
-    v.reflect = reflectsAt(y, j);
-    v.eta = m.kind == BsdfKind::Dielectric ? double(m.relativeIOR()) : 1.0;
-    if (!v.reflect && m.kind != BsdfKind::Dielectric) return false;
-  }
-  return true;
+// The chain's interaction at y's specular vertex j, as y has it: reflection or refraction, and
+// the index of refraction. False where the walk has no rule: a thin sheet's transmission, which
+// does not bend, or any transmission that is not a smooth dielectric's.
+bool setInteraction(const Scene& scene, const PathVertex* y, int j, ManifoldVertex& v) {
+  const Material& m = scene.materials[size_t(y[j].material)];
+  v.reflect = reflectsAt(y, j);
+  v.eta = m.kind == BsdfKind::Dielectric ? double(m.relativeIOR()) : 1.0;
+  return v.reflect || m.kind == BsdfKind::Dielectric;
 }
 
 // |d omega_b / dA_c| of a chain (c first, b last), with b's geometric normal: G / |cos_g at b|.
@@ -109,11 +106,13 @@ void walkRange(const Tracer& tracer, const StepConfig& ctx, StepQueues& q, const
     w.b = q.proposals.regenLast[w.slot];
     w.c = q.proposals.connectTo[w.slot];
     loadChainPath(q.chains, q.chainVertices, w.slot, y);
+    w.ngB = y[w.b].ng;
     // y's chain, c first: its fixed end, then the points where the tracer is to find the rest.
     ManifoldChain& chain = scratch.chains[k];
     chain.assign(1, fixedEnd(mc, y[w.c], y[w.c - 1]));
     for (int j = w.c - 1; j >= w.b; --j) {
       ManifoldVertex sought;
+      if (j > w.b) w.ok &= setInteraction(scene, y, j, sought);
       sought.p = d3(y[j].p);
       chain.push_back(sought);
     }
@@ -124,12 +123,11 @@ void walkRange(const Tracer& tracer, const StepConfig& ctx, StepQueues& q, const
   going.clear();
   for (size_t k = 0; k < count; ++k) {
     ChainWalks& w = walks[k];
-    loadChainPath(q.chains, q.chainVertices, w.slot, y);
     w.chainY = scratch.chains[k];
-    w.ok = scratch.located[k] && setInteractions(scene, y, w.b, w.c, w.chainY);
-    if (w.ok) w.solidAngleY = solidAnglePerArea(w.chainY, y[w.b].ng);
+    w.ok = w.ok && scratch.located[k];
+    if (w.ok) w.solidAngleY = solidAnglePerArea(w.chainY, w.ngB);
     if (!(w.solidAngleY > 0)) {
-      reject(q.proposals, w.slot, scratch.located[k] ? kRejectCurrentZero : kRejectNoWalk);
+      reject(q.proposals, w.slot, w.ok ? kRejectCurrentZero : kRejectNoWalk);
       w.ok = false;
       continue;
     }
@@ -197,9 +195,7 @@ void walkRange(const Tracer& tracer, const StepConfig& ctx, StepQueues& q, const
 
 uint64_t stageChainManifold(const Tracer& tracer, const StepConfig& ctx, StepQueues& q, size_t grain,
                             StageTimes* times) {
-  std::vector<uint32_t> slots;
-  for (size_t i = 0; i < q.chains.size(); ++i)
-    if (q.proposals.state[i] == kProposalManifold) slots.push_back(uint32_t(i));
+  const std::vector<uint32_t> slots = slotsInState(q.proposals, kProposalManifold);
   if (slots.empty()) return 0;
   std::atomic<uint64_t> rays{0};
   forEachRange("chain manifold", slots.size(), std::max<size_t>(16, grain / 4), [&](IndexRange r) {

@@ -129,6 +129,15 @@ inline void setConnectionRay(RayQueue& shadowRays, size_t i, const PathVertex& f
   setRay(shadowRays, i, origin, span / length, 0.0f, length * (1 - 1e-4f));
 }
 
+// The chain slots whose proposal is in `state`, in slot order (the stages that take over some
+// proposals after the mutate or trace stage: the bidirectional mutation's, the manifold stage).
+inline std::vector<uint32_t> slotsInState(const ProposalQueue& proposals, uint8_t state) {
+  std::vector<uint32_t> slots;
+  for (size_t i = 0; i < proposals.size(); ++i)
+    if (proposals.state[i] == state) slots.push_back(uint32_t(i));
+  return slots;
+}
+
 // The bidirectional mutation's stage (chain_bidirectional.cpp), after the mutate stage: the
 // proposals in state kProposalBidirectional draw their plan, walk from both ends in dense
 // batches, connect, and leave complete with their acceptance ratio (proposals.ratio) or

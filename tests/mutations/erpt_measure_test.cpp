@@ -21,17 +21,6 @@ namespace {
 
 using test::ErptWorld;
 
-std::optional<SurfacePoint> traceOne(const ErptWorld& w, Vec3 origin, Vec3 dir) {
-  RayQueue r;
-  HitQueue h;
-  prepareRays(r, 1);
-  h.resize(1);
-  setRay(r, 0, origin, dir, 0.0f, std::numeric_limits<float>::infinity());
-  w.tracer->intersect(r, h, IndexRange{0, 1}, RayCoherence::Incoherent);
-  if (h.geomID[0] == kNoHit) return std::nullopt;
-  return surfaceAt(w.scene, h.primID[0], h.u[0], h.v[0]);
-}
-
 // Where the walk from the source s ends: film position of vertex 1 and the direction from
 // vertex 1 towards vertex 2. The path leaves `from` along `dir` and follows the path's specular
 // lobes; nullopt if the walk leaves the path's signature.
@@ -43,7 +32,7 @@ std::optional<WalkEnd> walkToVertex1(const ErptWorld& w, const PathVertex* path,
   Vec3 origin = offsetOrigin(from, path[s].ng, dir);
   Vec3 previous = from;
   for (int j = s - 1; j >= 1; --j) {
-    auto hit = traceOne(w, origin, dir);
+    auto hit = w.traceOne(origin, dir);
     if (!hit) return std::nullopt;
     const Material& m = w.scene.materials[size_t(hit->material)];
     if (j == 1) {

@@ -36,6 +36,17 @@ StepConfig ErptWorld::stepContext(MutationStrategy strategy) const {
   return c;
 }
 
+std::optional<SurfacePoint> ErptWorld::traceOne(Vec3 origin, Vec3 dir) const {
+  RayQueue r;
+  HitQueue hits;
+  prepareRays(r, 1);
+  hits.resize(1);
+  setRay(r, 0, origin, dir, 0.0f, std::numeric_limits<float>::infinity());
+  tracer->intersect(r, hits, IndexRange{0, 1}, RayCoherence::Incoherent);
+  if (hits.geomID[0] == kNoHit || hits.geomID[0] == kRefusedRay) return std::nullopt;
+  return surfaceAt(scene, hits.primID[0], hits.u[0], hits.v[0]);
+}
+
 int ErptWorld::seedPath(size_t seed, PathVertex* out) const {
   const int n = int(seeds.seeds.vertexCount[seed]);
   for (int j = 0; j < n; ++j) out[j] = loadPathVertex(seeds.vertices, seeds.seeds.vertexBegin[seed] + size_t(j));

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "stages/chain_stages.h"
@@ -34,6 +35,8 @@ struct ErptWorld {
   StepConfig stepContext(MutationStrategy strategy) const;
   // The seed's path as PathVertex values.
   int seedPath(size_t seed, PathVertex* out) const;
+  // The first surface point along a ray, traced alone (nullopt: it missed or was refused).
+  std::optional<SurfacePoint> traceOne(Vec3 origin, Vec3 dir) const;
 };
 
 // The library's chain queues, and the library's chain step stopped before accept, so tests can

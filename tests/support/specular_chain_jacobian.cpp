@@ -9,22 +9,11 @@ namespace erpt::test {
 
 namespace {
 
-std::optional<SurfacePoint> traceOne(const ErptWorld& w, Vec3 origin, Vec3 dir) {
-  RayQueue r;
-  HitQueue hits;
-  prepareRays(r, 1);
-  hits.resize(1);
-  setRay(r, 0, origin, dir, 0.0f, std::numeric_limits<float>::infinity());
-  w.tracer->intersect(r, hits, IndexRange{0, 1}, RayCoherence::Incoherent);
-  if (hits.geomID[0] == kNoHit || hits.geomID[0] == kRefusedRay) return std::nullopt;
-  return surfaceAt(w.scene, hits.primID[0], hits.u[0], hits.v[0]);
-}
-
 // Where the ray from vertex b along `dir` lands on c's surface after the path's specular lobes.
 std::optional<Vec3> landing(const ErptWorld& w, const PathVertex* path, int b, int c, Vec3 dir) {
   Vec3 origin = offsetOrigin(path[b].p, path[b].ng, dir);
   for (int j = b + 1; j <= c; ++j) {
-    auto hit = traceOne(w, origin, dir);
+    auto hit = w.traceOne(origin, dir);
     if (!hit) return std::nullopt;
     if (j == c) return hit->position;
     const Material& m = w.scene.materials[size_t(hit->material)];
