@@ -60,6 +60,10 @@ struct RenderSettings {
   // Time-budgeted renders: called after every pass with the image so far, the render's
   // seconds so far (not counting this call) and its samples per pixel so far.
   std::function<void(const RgbImage&, double seconds, int spp)> onPass;
+  // The clock a time budget's decisions read, in seconds from any origin (unset: the steady
+  // clock). Tests set a counting clock so that the passes or rounds a budget takes do not
+  // depend on the machine's speed.
+  std::function<double()> budgetClock;
   // Stopping early (path, direct, erpt): once *stop is true, the render ends at its next batch
   // and returns the image of the sample passes it completed (RenderStats::partial). The
   // pass under way is dropped, so every pixel has the same samples and the image is an

@@ -8,6 +8,7 @@
 #include "core/parallel.h"
 #include "erpt/erpt_settings.h"
 #include "erpt/integrators.h"
+#include "integrators/budget_clock.h"
 #include "integrators/noise_filters.h"
 #include "core/rng.h"
 #include "tracer/tracer.h"
@@ -52,7 +53,8 @@ struct WeightedSum {
 // is then a mean over the passes rather than over all proposals).
 bool isCountImage(const std::string& name) { return name == "proposals" || name == "mutations"; }
 
-RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats& stats, Clock::time_point start) {
+RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+  const double start = budgetSeconds(s);
   const IntegratorModule& module = integratorNamed(s.integrator);
   RenderSettings pass = subRenderSettings(s);
   const PassRenderer renderPass = module.timedPasses ? module.timedPasses(scene, s, stats) : PassRenderer(module.render);
@@ -78,10 +80,10 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
     pass.spp = passSpp;
     pass.seed = p == 0 ? s.seed : streamKey(s.seed, kPassStream, uint64_t(p));
     if (module.scaleTimedPass) module.scaleTimedPass(s, pass);
-    const Clock::time_point passStart = Clock::now();
+    const double passStart = budgetSeconds(s);
     RenderStats ps;
     const RgbImage img = renderPass(scene, pass, ps);
-    const double passSeconds = secondsSince(passStart);
+    const double passSeconds = budgetSeconds(s) - passStart;
     // A stopped pass counts with the sample passes it completed (sample_passes.h), or with
     // the samples per pixel its kept work stands for (RenderStats::keptSpp).
     double weight = passSpp;
@@ -107,11 +109,11 @@ RgbImage renderForTime(const Scene& scene, const RenderSettings& s, RenderStats&
     stats.spp += passSpp;
     stats.passes = p + 1;
 
-    const double elapsed = secondsSince(start) - notRendering;
+    const double elapsed = budgetSeconds(s) - start - notRendering;
     if (s.onPass) {
-      const Clock::time_point t = Clock::now();
+      const double t = budgetSeconds(s);
       s.onPass(resultSoFar(), elapsed, stats.spp);
-      notRendering += secondsSince(t);
+      notRendering += budgetSeconds(s) - t;
     }
     if (s.progress) s.progress(std::min(1.0, elapsed / s.timeBudget));
     if (stats.partial) break;
@@ -170,7 +172,7 @@ RgbImage render(const Scene& scene, const RenderSettings& requested, RenderStats
   const uint64_t refusedBefore = s.tracer->refusedRays();
   RgbImage image;
   if (s.timeBudget != 0 && !integrator.ownTimeBudget) {
-    image = renderForTime(scene, s, stats, start);
+    image = renderForTime(scene, s, stats);
   } else {
     image = renderOnce(scene, s, stats);  // stats.spp: the passes it completed
     stats.passes = 1;

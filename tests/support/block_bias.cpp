@@ -20,10 +20,11 @@ namespace erpt::test {
 namespace {
 constexpr int kReferenceRuns = 16, kReferenceSpp = 128, kBlock = 8;
 
-RgbImage renderWith(const Scene& scene, const RenderSettings& s) {
+RgbImage renderWith(const Scene& scene, const RenderSettings& s, const std::function<void(const RenderStats&)>& after = {}) {
   RenderStats stats;
   RgbImage img = render(scene, s, stats);
   EXPECT_EQ(stats.invalidSamples, 0u);
+  if (after) after(stats);
   return img;
 }
 
@@ -98,7 +99,8 @@ bool readReference(const std::string& path, const std::string& key, BlockStats& 
 }  // namespace
 
 BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSettings settings, int runs, uint64_t seed,
-                                                    bool assertBounds, const std::function<void()>& beforeEachRun) {
+                                                    bool assertBounds, const std::function<void()>& beforeEachRun,
+                                                    const std::function<void(const RenderStats&)>& afterEachRun) {
   settings.width = settings.height = 64;
   settings.filterSet = true;
   settings.filter = FilterKind::Box;
@@ -120,7 +122,7 @@ BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSe
     RenderSettings s = settings;
     s.seed = seed + uint64_t(k);
     if (beforeEachRun) beforeEachRun();
-    images.push_back(renderWith(scene, s));
+    images.push_back(renderWith(scene, s, afterEachRun));
   }
   const BlockZScores z = blockZScores(blockStats(images, kBlock), reference);
   std::printf("%s: %zu blocks of 8x8: mean z^2 %.2f, worst |z| %.2f (the reference's share of the variance %.0f%%)\n",

@@ -23,9 +23,11 @@ struct BlockBiasResult {
 // variances, with a key naming the scene's fingerprint, the camera and the settings): with
 // ERPT_WRITE_BLOCK_REFERENCES set in the environment the test renders it and writes the file;
 // otherwise a missing file, or one whose key differs (the scene or settings changed), fails.
-// `beforeEachRun` (when set) is called before each of the `runs` renders.
+// `beforeEachRun` (when set) is called before each of the `runs` renders, `afterEachRun` with
+// each one's statistics.
 BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSettings settings, int runs, uint64_t seed,
                                                     bool assertBounds = true,
-                                                    const std::function<void()>& beforeEachRun = {});
+                                                    const std::function<void()>& beforeEachRun = {},
+                                                    const std::function<void(const RenderStats&)>& afterEachRun = {});
 
 }  // namespace erpt::test

@@ -17,6 +17,7 @@
 
 #include "stages/pmc_mixture.h"
 #include "core/rng.h"
+#include "integrators/budget_clock.h"
 #include "integrators/pmc_er/stratified_pool.h"
 #include "integrators/redistribution_parts.h"
 #include "integrators/seed_sampler.h"
@@ -143,7 +144,7 @@ int usablePopulation(const RenderSettings& s, size_t availableBytes) {
 }
 
 RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, RenderStats& stats) {
-  const auto start = std::chrono::steady_clock::now();
+  const double start = budgetSeconds(requested);
   validatePmcSettings(pmcOf(requested), chainOf(requested));
   RenderSettings s = requested;
   pmcOf(s).population = usablePopulation(requested, availableMemoryBytes());

@@ -1,7 +1,5 @@
 #pragma once
 
-#include <chrono>
-
 #include "erpt/erpt_settings.h"
 #include "erpt/pmc_settings.h"
 #include "erpt/integrators.h"
@@ -34,7 +32,7 @@ struct PmcTimeParts {
   RenderSetup& setup;
   const StepConfig& ctx;
   PmcMixture& mixture;
-  std::chrono::steady_clock::time_point start;  // the render's start: the budget counts from it
+  double start;  // the render's start on budgetSeconds' clock: the budget counts from it
 };
 // --time: one population over an open-ended pool, taking whole rounds while the next fits in
 // the budget (pmc_time_budget.cpp); sets stats.spp to the rounds taken.

@@ -12,10 +12,10 @@
 //
 // The decision depends on the clock only, never on the deposits.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "core/rng.h"
+#include "integrators/budget_clock.h"
 #include "integrators/pmc_er/pmc_er_integrator.h"
 #include "integrators/pmc_er/pmc_population.h"
 #include "integrators/pmc_er/stratified_pool.h"
@@ -25,12 +25,9 @@
 namespace erpt {
 
 namespace {
-using Clock = std::chrono::steady_clock;
 constexpr uint64_t kPoolStream = 0x706f6f6cull, kDirectChunkStream = 0x6469726368756e6bull;
 // Rounds of the open-ended pool (a bound no budget reaches: 2^24 samples per pixel).
 constexpr uint32_t kOpenEndedRounds = 1u << 24;
-
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
 // The direct pass in chunks that keep its ratio --direct-samples / --spp to the rounds taken,
 // each chunk its own stream; the image is the chunks' mean weighted by their samples. A chunk
@@ -49,9 +46,9 @@ class DirectChunks {
     RenderSettings chunk = s_;
     chunk.seed = streamKey(s_.seed, kDirectChunkStream, uint64_t(chunks_++));
     chainOf(chunk).directSamples = target - done_;
-    const Clock::time_point t = Clock::now();
+    const double t = budgetSeconds(s_);
     const RgbImage img = renderDirectPass(scene_, chunk, stats);
-    seconds_ += secondsSince(t);
+    seconds_ += budgetSeconds(s_) - t;
     if (sum_.pixels.empty()) {
       sum_.width = img.width, sum_.height = img.height;
       sum_.pixels.assign(img.pixels.size(), Color(0.0f));
@@ -82,7 +79,7 @@ class DirectChunks {
 // round's end one more round while it and the drain fit in the budget.
 class RoundBudget {
  public:
-  RoundBudget(const RenderSettings& s, const PmcSettings& p, size_t pixels, Clock::time_point start,
+  RoundBudget(const RenderSettings& s, const PmcSettings& p, size_t pixels, double start,
               const DirectChunks& direct)
       : s_(s), pixels_(pixels), start_(start), direct_(direct) {
     // The drain's work in iterations of the whole population: sum of (1 - r)^d over its
@@ -110,14 +107,14 @@ class RoundBudget {
                         direct_.secondsToKeepUpWith(double(taken + pixels_) / double(pixels_));
     return elapsed + next <= s_.timeBudget ? taken + pixels_ : taken;
   }
-  double elapsedRendering() const { return secondsSince(start_) - notRendering; }
+  double elapsedRendering() const { return budgetSeconds(s_) - start_ - notRendering; }
 
   double notRendering = 0;  // seconds spent in onPass, not counted against the budget
 
  private:
   const RenderSettings& s_;
   size_t pixels_;
-  Clock::time_point start_;
+  double start_;
   const DirectChunks& direct_;
   double drainPositions_ = 0;
   double perPosition_ = 0, firstElapsed_ = 0;
@@ -148,10 +145,10 @@ RgbImage renderPmcForTime(const Scene& scene, const RenderSettings& s, const Pmc
       const double rounds = double(taken) / double(pixels);
       direct.keepUpWith(rounds, false, stats);
       if (s.onPass) {
-        const Clock::time_point t = Clock::now();
+        const double t = budgetSeconds(s);
         s.onPass(redistributionImage(s, population.snapshot(rounds), direct.image(), nullptr, nullptr),
                  budget.elapsedRendering(), int(rounds));
-        budget.notRendering += secondsSince(t);
+        budget.notRendering += budgetSeconds(s) - t;
       }
     }
     return budget(taken);

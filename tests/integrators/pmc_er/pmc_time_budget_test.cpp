@@ -7,6 +7,9 @@
 //    unbiased block by block.
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <cstdio>
+#include <memory>
 #include <vector>
 
 #include "erpt/render.h"
@@ -91,15 +94,24 @@ TEST(PmcTimeBudget, ABudgetShorterThanOneRoundStillTakesRoundZero) {
 }
 
 // Whole --time renders, with the direct pass in chunks (at the ratio --direct-samples / --spp
-// to the rounds taken), block by block. The number of rounds depends on the machine's speed;
-// every count is unbiased, but a render of one or two rounds is so noisy that the z-test's
-// tails grow (a sanitizer build got worst |z| 6.7 from 0.3 s renders), so the budget is long
-// enough for several rounds in the slowest build (a Release build makes some 40 in 1.5 s).
+// to the rounds taken), block by block. Every round count is unbiased, but a render of one or
+// two rounds is so noisy that the z-test's tails grow (a sanitizer build got worst |z| 4.9 and
+// 6.7 from renders the machine's clock cut short), so the budget reads a counting clock (each
+// reading a millisecond later): the rounds taken, and the test's images, are the same on every
+// machine and in every build.
 TEST(StatisticalPmcTimeBudget, WholeRoundsAndTheSplitDirectPassAreUnbiasedBlockByBlock) {
   RenderSettings s = pmcSettings(0, 0, 2, 600);
   chainOf(s).directSamples = 4;
   s.timeBudget = 1.5;
-  test::expectMatchesPathTracerBlockByBlock(defaultScene(), s, 16, 7200);
+  auto readings = std::make_shared<std::atomic<uint64_t>>(0);
+  s.budgetClock = [readings] { return 5e-3 * double(readings->fetch_add(1)); };
+  std::vector<int> rounds;
+  test::expectMatchesPathTracerBlockByBlock(
+      defaultScene(), s, 16, 7200, true, [&] { *readings = 0; },
+      [&](const RenderStats& stats) { rounds.push_back(stats.spp); });
+  std::printf("rounds per render: %d\n", rounds.empty() ? 0 : rounds[0]);
+  ASSERT_EQ(rounds.size(), 16u);
+  for (int r : rounds) EXPECT_GE(r, 8) << "too few rounds for the z-test's tails";
 }
 
 }  // namespace
