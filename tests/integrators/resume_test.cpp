@@ -198,7 +198,9 @@ void expectStoppedRendersAreUnbiased(const Scene& scene, RenderSettings s, int s
   s.onPasses = [&](const RenderState& state, const std::function<RgbImage()>&) {
     if (state.passesDone >= stopAfter) stop = true, ++stopped;
   };
-  test::expectMatchesPathTracerBlockByBlock(scene, s, runs, seed, true, [&] { stop = false; });
+  test::BlockTestOptions options;
+  options.beforeEachRun = [&] { stop = false; };
+  test::expectMatchesPathTracerBlockByBlock(scene, s, runs, seed, options);
   EXPECT_EQ(stopped, runs);
 }
 

@@ -18,7 +18,7 @@
 namespace erpt::test {
 
 namespace {
-constexpr int kReferenceRuns = 16, kReferenceSpp = 128, kBlock = 8;
+constexpr int kReferenceRuns = 16, kBlock = 8;
 
 RgbImage renderWith(const Scene& scene, const RenderSettings& s, const std::function<void(const RenderStats&)>& after = {}) {
   RenderStats stats;
@@ -28,15 +28,15 @@ RgbImage renderWith(const Scene& scene, const RenderSettings& s, const std::func
   return img;
 }
 
-// The reference: 16 path-traced renders of 128 spp. Its variance of the mean is 2-34% of the
-// tests' z denominators (printed by each test): fewer spp would cost real power where it is
-// largest (halving them at 34% shrinks z by 14%), more would add little.
-BlockStats renderReference(const Scene& scene, const RenderSettings& settings, uint64_t seed) {
+// The reference: 16 path-traced renders, of 128 spp by default. Its variance of the mean is
+// then 2-34% of most tests' z denominators (printed by each test): fewer spp would cost real
+// power where it is largest (halving them at 34% shrinks z by 14%), more would add little.
+BlockStats renderReference(const Scene& scene, const RenderSettings& settings, uint64_t seed, int spp) {
   std::vector<RgbImage> pathImages;
   for (int k = 0; k < kReferenceRuns; ++k) {
     RenderSettings s = settings;
     s.integrator = "path";
-    s.spp = kReferenceSpp;
+    s.spp = spp;
     s.stop = nullptr;  // the reference renders run in full
     s.onPasses = nullptr;
     s.seed = seed + 1000 + uint64_t(k);
@@ -47,7 +47,7 @@ BlockStats renderReference(const Scene& scene, const RenderSettings& settings, u
 
 // What the reference depends on, as text: the scene (its file's bytes and geometry: the
 // checkpoint fingerprint), the camera (tests change it in code) and the path tracer's settings.
-std::string referenceKey(const Scene& scene, const RenderSettings& s, uint64_t seed) {
+std::string referenceKey(const Scene& scene, const RenderSettings& s, uint64_t seed, int spp) {
   std::ostringstream key;
   key.precision(9);
   key << std::hex << sceneFingerprint(scene) << std::dec << " camera";
@@ -56,7 +56,7 @@ std::string referenceKey(const Scene& scene, const RenderSettings& s, uint64_t s
   key << ' ' << c.fovDegrees << ' ' << int(c.fovAxis) << ' ' << c.nearClip << ' ' << c.farClip << ' '
       << c.apertureRadius << ' ' << c.focusDistance;
   key << " size " << s.width << 'x' << s.height << " filter " << int(s.filter) << " film " << int(s.film)
-      << " max-depth " << s.maxDepth << " runs " << kReferenceRuns << " spp " << kReferenceSpp << " seeds "
+      << " max-depth " << s.maxDepth << " runs " << kReferenceRuns << " spp " << spp << " seeds "
       << seed + 1000;
   return key.str();
 }
@@ -73,11 +73,11 @@ std::string referenceFile() {
   return sourceDir() + "/tests/data/block-references/" + name + ".txt";
 }
 
-void writeReference(const std::string& path, const std::string& key, const BlockStats& stats) {
+void writeReference(const std::string& path, const std::string& key, const BlockStats& stats, int spp) {
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
   std::ofstream out(path);
   out << "# Per-block statistics (mean luminance sum of each 8x8 block and its variance of the mean) of "
-      << kReferenceRuns << " path-traced renders of " << kReferenceSpp << " spp, made by our path tracer.\n"
+      << kReferenceRuns << " path-traced renders of " << spp << " spp, made by our path tracer.\n"
       << "# Remade by: ERPT_WRITE_BLOCK_REFERENCES=1 build/tests/erpt_tests --gtest_filter='"
       << std::filesystem::path(path).stem().string() << "'\n"
       << "key " << key << '\n';
@@ -99,19 +99,18 @@ bool readReference(const std::string& path, const std::string& key, BlockStats& 
 }  // namespace
 
 BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSettings settings, int runs, uint64_t seed,
-                                                    bool assertBounds, const std::function<void()>& beforeEachRun,
-                                                    const std::function<void(const RenderStats&)>& afterEachRun) {
+                                                    const BlockTestOptions& options) {
   settings.width = settings.height = 64;
   settings.filterSet = true;
   settings.filter = FilterKind::Box;
   // The path-traced reference is stored (it was half of the suite's statistical time): made
   // again, and written, with ERPT_WRITE_BLOCK_REFERENCES set; a file that is missing or that
   // was made for another scene, camera or settings fails the test.
-  const std::string file = referenceFile(), key = referenceKey(scene, settings, seed);
+  const std::string file = referenceFile(), key = referenceKey(scene, settings, seed, options.referenceSpp);
   BlockStats reference;
   if (std::getenv("ERPT_WRITE_BLOCK_REFERENCES")) {
-    reference = renderReference(scene, settings, seed);
-    writeReference(file, key, reference);
+    reference = renderReference(scene, settings, seed, options.referenceSpp);
+    writeReference(file, key, reference, options.referenceSpp);
   } else if (!readReference(file, key, reference)) {
     ADD_FAILURE() << file << ": no stored reference for this scene and these settings; make it with "
                   << "ERPT_WRITE_BLOCK_REFERENCES=1 (the file's header says how)";
@@ -121,8 +120,8 @@ BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSe
   for (int k = 0; k < runs; ++k) {
     RenderSettings s = settings;
     s.seed = seed + uint64_t(k);
-    if (beforeEachRun) beforeEachRun();
-    images.push_back(renderWith(scene, s, afterEachRun));
+    if (options.beforeEachRun) options.beforeEachRun();
+    images.push_back(renderWith(scene, s, options.afterEachRun));
   }
   const BlockZScores z = blockZScores(blockStats(images, kBlock), reference);
   std::printf("%s: %zu blocks of 8x8: mean z^2 %.2f, worst |z| %.2f (the reference's share of the variance %.0f%%)\n",
@@ -132,7 +131,7 @@ BlockBiasResult expectMatchesPathTracerBlockByBlock(const Scene& scene, RenderSe
                                           [](double v) { return v > 0; }));
   EXPECT_GE(lit, 32u);
   EXPECT_GE(z.z.size(), lit);
-  if (assertBounds) {
+  if (options.assertBounds) {
     EXPECT_LT(z.meanSquare, 2.0);
     EXPECT_LT(z.worst, 4.5);
   }

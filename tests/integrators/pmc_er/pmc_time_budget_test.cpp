@@ -106,9 +106,10 @@ TEST(StatisticalPmcTimeBudget, WholeRoundsAndTheSplitDirectPassAreUnbiasedBlockB
   auto readings = std::make_shared<std::atomic<uint64_t>>(0);
   s.budgetClock = [readings] { return 5e-3 * double(readings->fetch_add(1)); };
   std::vector<int> rounds;
-  test::expectMatchesPathTracerBlockByBlock(
-      defaultScene(), s, 16, 7200, true, [&] { *readings = 0; },
-      [&](const RenderStats& stats) { rounds.push_back(stats.spp); });
+  test::BlockTestOptions options;
+  options.beforeEachRun = [&] { *readings = 0; };
+  options.afterEachRun = [&](const RenderStats& stats) { rounds.push_back(stats.spp); };
+  test::expectMatchesPathTracerBlockByBlock(defaultScene(), s, 16, 7200, options);
   std::printf("rounds per render: %d\n", rounds.empty() ? 0 : rounds[0]);
   ASSERT_EQ(rounds.size(), 16u);
   for (int r : rounds) EXPECT_GE(r, 8) << "too few rounds for the z-test's tails";
