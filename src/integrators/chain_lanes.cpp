@@ -15,6 +15,12 @@ namespace erpt {
 namespace {
 constexpr uint64_t kChainStream = 0x636861696eull, kSeedStream = 0x73656564ull;
 
+// Lanes have films of their own while those take at most this much memory together.
+constexpr double kLaneFilmBytes = 256.0 * 1024 * 1024;
+bool lanesOwnFilms(int lanes, const Film& film) {
+  return lanes > 1 && double(lanes) * double(film.width()) * double(film.height()) * 3 * sizeof(int64_t) <= kLaneFilmBytes;
+}
+
 double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
@@ -28,7 +34,8 @@ ChainLanes::ChainLanes(const Tracer& tracer, const Config& config, Film& film, C
       film_(film),
       stats_(stats),
       times_(times),
-      exact_(film.width(), film.height(), exactFilmUnit(config.depositEnergy), config.lanes > 1) {
+      exact_(film.width(), film.height(), exactFilmUnit(config.depositEnergy),
+             config.lanes > 1 && !lanesOwnFilms(config.lanes, film)) {
   filters_.maxConsecutive = uint32_t(settings().maxConsecutive);
   tallies_.allocate(size_t(film.width()) * size_t(film.height()), settings().pmFilterRadius >= 0, settings().chainMaps);
   tallies_.attach(filters_);
@@ -123,11 +130,16 @@ bool ChainLanes::startChains(const SeedStore& starts, float energyPerStep) {
 bool ChainLanes::finish() { return runLanes(true); }
 
 bool ChainLanes::runLanes(bool drain) {
+  if (lanesOwnFilms(int(lanes_.size()), film_) && (laneFilms_.empty() || laneFilms_[0].unit() != exact_.unit())) {
+    laneFilms_.clear();  // (the unit changes when a state is loaded)
+    for (size_t l = 0; l < lanes_.size(); ++l) laneFilms_.emplace_back(film_.width(), film_.height(), exact_.unit(), false);
+  }
   std::atomic<bool> stop{false};
   forEachRange("chain chains", lanes_.size(), 1, [&](IndexRange r) {
     for (size_t l = r.begin; l < r.end; ++l)
-      if (!runLane(*lanes_[l], drain)) stop = true;
+      if (!runLane(*lanes_[l], laneFilms_.empty() ? exact_ : laneFilms_[l], drain)) stop = true;
   });
+  mergeLaneFilms();
   mergeLanes();
   if (stop) depositUnfinished();
   // The large deposits wait for the end of the group of passes: when they are added to the
@@ -136,7 +148,14 @@ bool ChainLanes::runLanes(bool drain) {
   return !stop;
 }
 
-bool ChainLanes::runLane(ChainLane& lane, bool drain) {
+void ChainLanes::mergeLaneFilms() {
+  if (laneFilms_.empty()) return;
+  forEachRange("chain deposit merge", exact_.chunks(), 16, [&](IndexRange r) {
+    for (ExactFilm& lane : laneFilms_) exact_.takeChunks(lane, r.begin, r.end);
+  }, &times_);
+}
+
+bool ChainLanes::runLane(ChainLane& lane, ExactFilm& film, bool drain) {
   for (;;) {
     const bool waiting = refill(lane);
     if (drain) {
@@ -149,7 +168,7 @@ bool ChainLanes::runLane(ChainLane& lane, bool drain) {
     if (stopped()) return false;
     uint64_t active = 0;
     for (size_t i = 0; i < lane.q.chains.size(); ++i) active += lane.q.chains.stepsLeft[i] > 0;
-    step(lane);
+    step(lane, film);
     countSteps(active);
   }
 }
@@ -259,7 +278,9 @@ void ChainLanes::depositInPlace(const SeedStore& store, size_t seed, double ener
   inPlaceDeposited_ += added;
 }
 
-void ChainLanes::step(ChainLane& lane) { lane.step(tracer_, config_.step, config_.policy, counters_, &exact_); }
+void ChainLanes::step(ChainLane& lane, ExactFilm& film) {
+  lane.step(tracer_, config_.step, config_.policy, counters_, &film);
+}
 
 void ChainLanes::mergeLanes() {
   ChainLane::Totals totals;

@@ -10,7 +10,8 @@ ExactFilm::ExactFilm(int width, int height, double unit, bool concurrent)
       unit_(unit),
       perUnit_(1.0 / unit),
       concurrent_(concurrent),
-      counts_(size_t(width) * size_t(height) * 3, 0) {}
+      counts_(size_t(width) * size_t(height) * 3, 0),
+      touched_(concurrent ? 0 : chunks(), 0) {}
 
 void ExactFilm::add(uint32_t pixel, Color c, float weight) {
   const double scale = double(weight) * perUnit_;
@@ -26,6 +27,24 @@ void ExactFilm::add(uint32_t pixel, Color c, float weight) {
       __atomic_fetch_add(&p[k], n, __ATOMIC_RELAXED);
     else
       p[k] += n;
+  }
+  if (!concurrent_) touched_[pixel / kChunkPixels] = 1;
+}
+
+void ExactFilm::takeChunks(ExactFilm& from, size_t firstChunk, size_t endChunk) {
+  const size_t pixels = counts_.size() / 3;
+  for (size_t chunk = firstChunk; chunk < endChunk; ++chunk) {
+    if (!from.touched_[chunk]) continue;
+    from.touched_[chunk] = 0;
+    const size_t begin = 3 * chunk * kChunkPixels, end = 3 * std::min(pixels, (chunk + 1) * kChunkPixels);
+    for (size_t i = begin; i < end; ++i) {
+      if (concurrent_)
+        __atomic_fetch_add(&counts_[i], from.counts_[i], __ATOMIC_RELAXED);
+      else
+        counts_[i] += from.counts_[i];
+      from.counts_[i] = 0;
+    }
+    if (!concurrent_) touched_[chunk] = 1;
   }
 }
 

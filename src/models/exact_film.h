@@ -4,7 +4,8 @@
 // float deposits is exact only while the pixel's total stays within 2^29 of each deposit, which
 // a long render with a tent filter's small edge weights exceeds), integer sums are: each channel
 // of each pixel counts multiples of `unit`, every add rounds its value to the nearest count and
-// adds it atomically.
+// adds it atomically (or, in a chain lane's own film, plainly; the lanes' films are then added
+// up, takeChunks).
 //
 // The owner picks unit = 2^-24 e_d (ERPT's deposit energy): a deposit's rounding error is at
 // most 2^-25 e_d, below a float's precision of the deposit itself, and a pixel holds about
@@ -35,6 +36,14 @@ class ExactFilm {
   }
   // Adds c * weight to the pixel (thread-safe when concurrent). c must fit.
   void add(uint32_t pixel, Color c, float weight);
+  // Adds the counts of `from` (same size and unit, not concurrent) to the pixels in
+  // [firstChunk, endChunk) of kChunkPixels each, and sets them to zero there. Only the chunks
+  // `from` was added to since its last takeChunks are read: a chain lane's own film touches a
+  // small part of a large image between merges. Integer sums, so the result is the same as
+  // if every add had been made here.
+  void takeChunks(ExactFilm& from, size_t firstChunk, size_t endChunk);
+  size_t chunks() const { return (size_t(width_) * size_t(height_) + kChunkPixels - 1) / kChunkPixels; }
+  static constexpr size_t kChunkPixels = 1024;
   // Asks the cache for a pixel's counts a little before adding to them: chains deposit on
   // scattered pixels, and each add would otherwise wait for its miss.
   void prefetch(uint32_t pixel) const {
@@ -68,6 +77,7 @@ class ExactFilm {
   double unit_, perUnit_;
   bool concurrent_;
   std::vector<int64_t> counts_;  // 3 per pixel
+  std::vector<uint8_t> touched_;  // per chunk, not concurrent films only: added to since takeChunks
 };
 
 }  // namespace erpt

@@ -75,8 +75,9 @@ void placeSeeds(size_t live, SeedPlacement& placement, SeedStore& store) {
     seedRow += seeds;
     vertexRow += vertices;
   }
-  store.seeds.resize(seedRow);
-  store.vertices.resize(vertexRow);
+  // stageRecordSeeds writes every row placed here (writeSeed, copyChain and the light row).
+  store.seeds.resizeForOverwrite(seedRow);
+  store.vertices.resizeForOverwrite(vertexRow);
 }
 
 void stageRecordSeeds(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots, const HitQueue& hits,

@@ -62,6 +62,46 @@ TEST(ExactFilm, SumsDoNotDependOnTheOrderOfTheAdds) {
   for (int p = 0; p < 4; ++p) EXPECT_NEAR(f.pixels[size_t(p)].x, sums[size_t(3 * p)], 1e-6 * sums[size_t(3 * p)] + 1e4 * unit);
 }
 
+// Chain lanes' own films, added up chunk by chunk (ChainLanes on several threads): the sums
+// are those of one film that took every add, whichever films took them and in whatever
+// chunks and order they are merged; a lane's film is empty after the merge and merging it again
+// adds nothing. 97 x 61 pixels: the last chunk is partial.
+TEST(ExactFilm, LaneFilmsMergedByChunksEqualOneFilm) {
+  const int w = 97, h = 61;
+  const double unit = std::ldexp(1.0, -24);
+  ExactFilm one(w, h, unit, false), merged(w, h, unit, false);
+  std::vector<ExactFilm> lanes;
+  for (int l = 0; l < 3; ++l) lanes.emplace_back(w, h, unit, false);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> value(0, 1);
+  // Lane 2 only ever adds to the first rows: its other chunks are never read.
+  for (int i = 0; i < 30000; ++i) {
+    const int lane = int(rng() % 3);
+    const uint32_t pixel = uint32_t(rng() % (lane == 2 ? 200u : uint32_t(w * h)));
+    const Color c(value(rng), value(rng), value(rng));
+    const float weight = value(rng);
+    one.add(pixel, c, weight);
+    lanes[size_t(lane)].add(pixel, c, weight);
+    if (i == 15000)  // a merge half-way, as after a batch's run of the lanes
+      for (auto& lane : lanes) merged.takeChunks(lane, 0, merged.chunks());
+  }
+  ASSERT_GT(merged.chunks(), 5u);
+  for (size_t first = 0; first < merged.chunks(); first += 2)  // in ranges, lanes in reverse
+    for (size_t l = lanes.size(); l-- > 0;) merged.takeChunks(lanes[l], first, std::min(first + 2, merged.chunks()));
+  RgbImage a{w, h, std::vector<Color>(size_t(w * h)), {}}, b = a, empty = a, lane = a;
+  one.addTo(a, 1.0);
+  merged.addTo(b, 1.0);
+  test::expectBitIdentical(a, b);
+  for (auto& l : lanes) {
+    l.addTo(lane, 1.0);
+    merged.takeChunks(l, 0, merged.chunks());
+  }
+  test::expectBitIdentical(lane, empty);
+  RgbImage again = empty;
+  merged.addTo(again, 1.0);
+  test::expectBitIdentical(again, a);
+}
+
 TEST(ExactFilm, RefusesValuesBeyondItsRangeAndNaN) {
   const double unit = 1e-6;
   ExactFilm film(1, 1, unit, false);

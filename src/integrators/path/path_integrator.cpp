@@ -166,7 +166,9 @@ void traceSamples(const Tracer& tracer, const StageContext& ctx, const PathSampl
       next += m;
     }
 
-    if (rec) rec->history.resize(bounceHistory.base + live);
+    // The shade stage writes the row of every hit it shades; the rows it leaves (misses,
+    // refused rays) are never linked to, so they need no zeroing.
+    if (rec) rec->history.resizeForOverwrite(bounceHistory.base + live);
     rayCount += live;
     run("intersect", live, [&](IndexRange r) {
       // Bounce rays of the paths in flight are incoherent; the camera rays just started are not.
