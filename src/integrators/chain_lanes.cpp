@@ -15,12 +15,6 @@ namespace erpt {
 namespace {
 constexpr uint64_t kChainStream = 0x636861696eull, kSeedStream = 0x73656564ull;
 
-// Lanes have films of their own while those take at most this much memory together.
-constexpr double kLaneFilmBytes = 256.0 * 1024 * 1024;
-bool lanesOwnFilms(int lanes, const Film& film) {
-  return lanes > 1 && double(lanes) * double(film.width()) * double(film.height()) * 3 * sizeof(int64_t) <= kLaneFilmBytes;
-}
-
 double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
@@ -35,7 +29,7 @@ ChainLanes::ChainLanes(const Tracer& tracer, const Config& config, Film& film, C
       stats_(stats),
       times_(times),
       exact_(film.width(), film.height(), exactFilmUnit(config.depositEnergy),
-             config.lanes > 1 && !lanesOwnFilms(config.lanes, film)) {
+             config.lanes > 1 && !LaneFilms::fit(size_t(config.lanes), film.width(), film.height())) {
   filters_.maxConsecutive = uint32_t(settings().maxConsecutive);
   tallies_.allocate(size_t(film.width()) * size_t(film.height()), settings().pmFilterRadius >= 0, settings().chainMaps);
   tallies_.attach(filters_);
@@ -130,29 +124,20 @@ bool ChainLanes::startChains(const SeedStore& starts, float energyPerStep) {
 bool ChainLanes::finish() { return runLanes(true); }
 
 bool ChainLanes::runLanes(bool drain) {
-  if (lanesOwnFilms(int(lanes_.size()), film_) && (laneFilms_.empty() || laneFilms_[0].unit() != exact_.unit())) {
-    laneFilms_.clear();  // (the unit changes when a state is loaded)
-    for (size_t l = 0; l < lanes_.size(); ++l) laneFilms_.emplace_back(film_.width(), film_.height(), exact_.unit(), false);
-  }
+  if (laneFilms_.unit() != exact_.unit())  // the first run, or a state was loaded
+    laneFilms_.reset(lanes_.size(), film_.width(), film_.height(), exact_.unit());
   std::atomic<bool> stop{false};
   forEachRange("chain chains", lanes_.size(), 1, [&](IndexRange r) {
     for (size_t l = r.begin; l < r.end; ++l)
-      if (!runLane(*lanes_[l], laneFilms_.empty() ? exact_ : laneFilms_[l], drain)) stop = true;
+      if (!runLane(*lanes_[l], laneFilms_.of(l, exact_), drain)) stop = true;
   });
-  mergeLaneFilms();
+  laneFilms_.mergeInto(exact_, &times_);
   mergeLanes();
   if (stop) depositUnfinished();
   // The large deposits wait for the end of the group of passes: when they are added to the
   // film they then do not depend on how far each lane had got when a batch's consume returned.
   if (drain && !stop) addLargeDeposits(large_, config_.step.measure.film, film_);
   return !stop;
-}
-
-void ChainLanes::mergeLaneFilms() {
-  if (laneFilms_.empty()) return;
-  forEachRange("chain deposit merge", exact_.chunks(), 16, [&](IndexRange r) {
-    for (ExactFilm& lane : laneFilms_) exact_.takeChunks(lane, r.begin, r.end);
-  }, &times_);
 }
 
 bool ChainLanes::runLane(ChainLane& lane, ExactFilm& film, bool drain) {

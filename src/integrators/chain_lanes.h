@@ -22,6 +22,7 @@
 #include "core/byte_stream.h"
 
 #include "integrators/chain_lane.h"
+#include "integrators/lane_films.h"
 #include "integrators/chain_settings.h"
 #include "stages/chain_step.h"
 #include "stages/chain_stages.h"
@@ -110,11 +111,6 @@ class ChainLanes {
   // are still waiting for a slot afterwards.
   bool refill(ChainLane& lane);
   void step(ChainLane& lane, ExactFilm& film);
-  // With several lanes, each deposits into a film of its own while the image is small enough
-  // for one per lane: the adds then need no locked instructions and no cache line moves
-  // between the threads (the deposit stage took 1.6x the time on 2 threads as on 1 with one
-  // shared film). The lanes' films are added into exact_ after every run of the lanes.
-  void mergeLaneFilms();
   // Lane totals (rays, energy, filter counts, stage times, large deposits) into the machine's.
   void mergeLanes();
   // Deposits `energy` (luminance) in the seed's colour at its film position, counted by `why`.
@@ -132,7 +128,9 @@ class ChainLanes {
   ChainStats& stats_;
   StageTimes& times_;
   ExactFilm exact_;
-  std::vector<ExactFilm> laneFilms_;  // one per lane, or none (the lanes share exact_)
+  // The lanes' own films (lane_films.h), added into exact_ after every run of the lanes; or
+  // none, and the lanes share exact_.
+  LaneFilms laneFilms_;
   std::vector<std::unique_ptr<ChainLane>> lanes_;
   StepCounters counters_;
   // Chains of the current batch: pending_[p] starts chains firstChain.. +copies of the batch,

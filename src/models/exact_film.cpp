@@ -10,32 +10,15 @@ ExactFilm::ExactFilm(int width, int height, double unit, bool concurrent)
       unit_(unit),
       perUnit_(1.0 / unit),
       concurrent_(concurrent),
-      counts_(size_t(width) * size_t(height) * 3, 0),
-      touched_(concurrent ? 0 : chunks(), 0) {}
-
-void ExactFilm::add(uint32_t pixel, Color c, float weight) {
-  const double scale = double(weight) * perUnit_;
-  int64_t* p = &counts_[3 * size_t(pixel)];
-  const double v[3] = {double(c.x) * scale, double(c.y) * scale, double(c.z) * scale};
-  for (int k = 0; k < 3; ++k) {
-    if (v[k] == 0) continue;
-    const int64_t n = int64_t(std::llrint(v[k]));
-    // GCC/Clang atomic builtins on plain integers (C++17 has no atomic_ref): relaxed, since
-    // only the final sums are read, after the lanes have joined. A locked add costs ~20 ns
-    // here, so one writer adds plainly (the integer sums are the same either way).
-    if (concurrent_)
-      __atomic_fetch_add(&p[k], n, __ATOMIC_RELAXED);
-    else
-      p[k] += n;
-  }
-  if (!concurrent_) touched_[pixel / kChunkPixels] = 1;
-}
+      counts_(size_t(width) * size_t(height) * 3, 0) {}
 
 void ExactFilm::takeChunks(ExactFilm& from, size_t firstChunk, size_t endChunk) {
   const size_t pixels = counts_.size() / 3;
   for (size_t chunk = firstChunk; chunk < endChunk; ++chunk) {
-    if (!from.touched_[chunk]) continue;
-    from.touched_[chunk] = 0;
+    if (!from.touched_.empty()) {
+      if (!from.touched_[chunk]) continue;
+      from.touched_[chunk] = 0;
+    }
     const size_t begin = 3 * chunk * kChunkPixels, end = 3 * std::min(pixels, (chunk + 1) * kChunkPixels);
     for (size_t i = begin; i < end; ++i) {
       if (concurrent_)
@@ -44,7 +27,7 @@ void ExactFilm::takeChunks(ExactFilm& from, size_t firstChunk, size_t endChunk) 
         counts_[i] += from.counts_[i];
       from.counts_[i] = 0;
     }
-    if (!concurrent_) touched_[chunk] = 1;
+    if (!touched_.empty()) touched_[chunk] = 1;
   }
 }
 

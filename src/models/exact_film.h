@@ -34,7 +34,8 @@ class ExactFilm {
     const float m = std::max(std::max(std::abs(c.x), std::abs(c.y)), std::abs(c.z));
     return double(m) * perUnit_ < kMaxCounts;  // false for NaN too
   }
-  // Adds c * weight to the pixel (thread-safe when concurrent). c must fit.
+  // Adds c * weight to the pixel (thread-safe when concurrent). c must fit. (Inline: the
+  // chains' deposit loop calls it for every pixel a deposit reaches.)
   void add(uint32_t pixel, Color c, float weight);
   // Adds the counts of `from` (same size and unit, not concurrent) to the pixels in
   // [firstChunk, endChunk) of kChunkPixels each, and sets them to zero there. Only the chunks
@@ -43,6 +44,9 @@ class ExactFilm {
   // if every add had been made here.
   void takeChunks(ExactFilm& from, size_t firstChunk, size_t endChunk);
   size_t chunks() const { return (size_t(width_) * size_t(height_) + kChunkPixels - 1) / kChunkPixels; }
+  // Marks the chunks add() touches, for takeChunks to read only those (a lane's own film; a
+  // film without the marks is read whole).
+  void trackTouchedChunks() { touched_.assign(chunks(), 0); }
   static constexpr size_t kChunkPixels = 1024;
   // Asks the cache for a pixel's counts a little before adding to them: chains deposit on
   // scattered pixels, and each add would otherwise wait for its miss.
@@ -77,7 +81,25 @@ class ExactFilm {
   double unit_, perUnit_;
   bool concurrent_;
   std::vector<int64_t> counts_;  // 3 per pixel
-  std::vector<uint8_t> touched_;  // per chunk, not concurrent films only: added to since takeChunks
+  std::vector<uint8_t> touched_;  // per chunk when tracked: added to since takeChunks
 };
+
+inline void ExactFilm::add(uint32_t pixel, Color c, float weight) {
+  const double scale = double(weight) * perUnit_;
+  int64_t* p = &counts_[3 * size_t(pixel)];
+  const double v[3] = {double(c.x) * scale, double(c.y) * scale, double(c.z) * scale};
+  for (int k = 0; k < 3; ++k) {
+    if (v[k] == 0) continue;
+    const int64_t n = int64_t(std::llrint(v[k]));
+    // GCC/Clang atomic builtins on plain integers (C++17 has no atomic_ref): relaxed, since
+    // only the final sums are read, after the lanes have joined. A locked add costs ~20 ns
+    // here, so one writer adds plainly (the integer sums are the same either way).
+    if (concurrent_)
+      __atomic_fetch_add(&p[k], n, __ATOMIC_RELAXED);
+    else
+      p[k] += n;
+  }
+  if (!touched_.empty()) touched_[pixel / kChunkPixels] = 1;
+}
 
 }  // namespace erpt

@@ -71,7 +71,10 @@ TEST(ExactFilm, LaneFilmsMergedByChunksEqualOneFilm) {
   const double unit = std::ldexp(1.0, -24);
   ExactFilm one(w, h, unit, false), merged(w, h, unit, false);
   std::vector<ExactFilm> lanes;
-  for (int l = 0; l < 3; ++l) lanes.emplace_back(w, h, unit, false);
+  for (int l = 0; l < 3; ++l) {
+    lanes.emplace_back(w, h, unit, false);
+    lanes.back().trackTouchedChunks();
+  }
   std::mt19937 rng(9);
   std::uniform_real_distribution<float> value(0, 1);
   // Lane 2 only ever adds to the first rows: its other chunks are never read.

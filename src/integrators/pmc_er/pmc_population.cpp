@@ -96,7 +96,9 @@ bool PmcPopulation::run(const PoolRounds& rounds, int maxIterations, const std::
     // After the first resampling every member holds the same energy: its deposit per step
     // sets the unit of this run's exact film.
     const double perStep = energy_.empty() ? 0.0 : energy_[0] * s.resampleRate / s.mutationsPerMember;
-    exact_ = std::make_unique<ExactFilm>(config_.film->width(), config_.film->height(), exactFilmUnit(perStep), true);
+    const int w = config_.film->width(), h = config_.film->height();
+    exact_ = std::make_unique<ExactFilm>(w, h, exactFilmUnit(perStep), !LaneFilms::fit(lanes_.size(), w, h));
+    laneFilms_.reset(lanes_.size(), w, h, exactFilmUnit(perStep));
   }
   int drained = 0;
   size_t members = slots();
@@ -393,7 +395,7 @@ void PmcPopulation::runLane(size_t l, int steps) {
     // Where each member stands before the step (its proposal's y).
     std::copy(lane.q.chains.filmX.begin(), lane.q.chains.filmX.begin() + ptrdiff_t(rows), fromX.begin());
     std::copy(lane.q.chains.filmY.begin(), lane.q.chains.filmY.begin() + ptrdiff_t(rows), fromY.begin());
-    lane.step(tracing_.tracer, config_.step, kernel, counters_, exact_.get());
+    lane.step(tracing_.tracer, config_.step, kernel, counters_, exact_ ? &laneFilms_.of(l, *exact_) : nullptr);
     const ProposalQueue& p = lane.q.proposals;
     for (size_t row = 0; row < rows; ++row) {
       if (!(energy_[first + row] > 0)) continue;
@@ -432,6 +434,7 @@ void PmcPopulation::settleFilm() {
   if (!config_.film) return;
   depositRemaining();
   addLargeDeposits(large_, config_.step.measure.film, *config_.film);
+  laneFilms_.mergeInto(*exact_, &stats_.stages);
   exact_->moveInto(*config_.film);
 }
 
@@ -452,6 +455,8 @@ RgbImage PmcPopulation::snapshot(double samplesPerPixel) const {
   Film film = *config_.film;
   if (exact_) {
     ExactFilm exact = *exact_;
+    LaneFilms lanes = laneFilms_;
+    lanes.mergeInto(exact, nullptr);
     exact.moveInto(film);
   }
   std::vector<LargeDeposit> large = large_;

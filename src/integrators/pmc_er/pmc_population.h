@@ -1,7 +1,7 @@
 // PMC-ER's population machine (docs/pmc-er.md): a fixed number of members in chain lanes
 // (chain_lane.h) of kPmcLaneSlots slots each; an iteration runs every lane's N steps on one
-// thread each, all lanes depositing into one ExactFilm, so the image does not depend on the
-// thread count. One iteration:
+// thread each, each lane depositing into its own ExactFilm (lane_films.h), so the image does
+// not depend on the thread count. One iteration:
 //   every member makes N mutations from its kernel (PmcMixture) and deposits a share r of
 //   its energy (r = --resample-rate) spread equally over them (equal deposition: at its
 //   current path; balance: detailed-balance deposits at y and the proposals);
@@ -22,6 +22,7 @@
 #include <memory>
 
 #include "integrators/chain_lane.h"
+#include "integrators/lane_films.h"
 #include "stages/chain_stages.h"
 #include "stages/pmc_mixture.h"
 #include "erpt/pmc_settings.h"
@@ -127,6 +128,7 @@ class PmcPopulation {
   // The chains' deposits of the current run: its unit follows the run's first deposit per step
   // (exactFilmUnit); at the end of the run its sums move into the film.
   std::unique_ptr<ExactFilm> exact_;
+  LaneFilms laneFilms_;  // the lanes' own films (lane_films.h), added into exact_ when it is read
   std::vector<LargeDeposit> large_;
   StepCounters counters_;
   DepositFilters filters_;  // the lanes' filter counts, merged
