@@ -31,6 +31,11 @@ namespace erpt {
 
 namespace {
 constexpr size_t kBatchPaths = 1 << 17;  // samples that reach the film (and the seed sink) together
+// Recording seeds, a batch's vertex history and seed store grow with the batch: at 2^17 samples
+// they took some 250 MB, touched afresh (page faults) and copied as they grew, on one thread.
+// At 2^15 an ERPT render's memory fell to a third and its time on 2 threads by a fifth
+// (docs/performance.md, "Chains on two threads").
+constexpr size_t kSeedBatchPaths = 1 << 15;
 constexpr size_t kChunkSamples = 16384;  // one task's share of a batch
 constexpr size_t kTaskQueue = 4096;      // paths in flight in one task's wavefront
 constexpr size_t kGrain = 512;
@@ -266,12 +271,13 @@ bool tracePathSamples(const RenderSetup& setup, const PathSampleSet& samples, co
   std::mutex timesMutex;
 
   bool complete = true;
-  for (size_t first = 0; first < total; first += kBatchPaths) {
+  const size_t batchPaths = out.seeds ? kSeedBatchPaths : kBatchPaths;
+  for (size_t first = 0; first < total; first += batchPaths) {
     if (stopRequested(out.stop)) {
       complete = false;
       break;
     }
-    const size_t n = std::min(kBatchPaths, total - first);
+    const size_t n = std::min(batchPaths, total - first);
     batch.resize(n);
     if (out.seeds) {
       SeedRecording rec{*out.seeds, recording.impl->history, recording.impl->placement};
