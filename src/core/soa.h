@@ -63,6 +63,9 @@ struct IndexRange {
 #define ERPT_SOA_VEC_RESIZE(name, doc) name##X.resize(n, 0.0f), name##Y.resize(n, 0.0f), name##Z.resize(n, 0.0f);
 #define ERPT_SOA_COLOR_RESIZE(name, doc) name##R.resize(n, 0.0f), name##G.resize(n, 0.0f), name##B.resize(n, 0.0f);
 #define ERPT_SOA_GROW(type, name, init, doc) name.resize(n);
+#define ERPT_SOA_RESERVE(type, name, init, doc) name.reserve(n);
+#define ERPT_SOA_VEC_RESERVE(name, doc) name##X.reserve(n), name##Y.reserve(n), name##Z.reserve(n);
+#define ERPT_SOA_COLOR_RESERVE(name, doc) name##R.reserve(n), name##G.reserve(n), name##B.reserve(n);
 #define ERPT_SOA_VEC_GROW(name, doc) name##X.resize(n), name##Y.resize(n), name##Z.resize(n);
 #define ERPT_SOA_COLOR_GROW(name, doc) name##R.resize(n), name##G.resize(n), name##B.resize(n);
 #define ERPT_SOA_COPY_ROW(type, name, init, doc) name[to] = from.name[at];
@@ -107,6 +110,8 @@ struct IndexRange {
       FIELDS(ERPT_SOA_GROW, ERPT_SOA_VEC_GROW, ERPT_SOA_COLOR_GROW)                            \
       count = n;                                                                               \
     }                                                                                          \
+    /* room for n rows (address space: pages are touched by whoever writes them first) */     \
+    void reserve(size_t n) { FIELDS(ERPT_SOA_RESERVE, ERPT_SOA_VEC_RESERVE, ERPT_SOA_COLOR_RESERVE) } \
     size_t size() const { return count; }                                                      \
     /* row `to` of this = row `at` of `from` */                                                \
     void copyRow(size_t to, const Name& from, size_t at) {                                     \

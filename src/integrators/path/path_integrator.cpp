@@ -36,6 +36,9 @@ constexpr size_t kBatchPaths = 1 << 17;  // samples that reach the film (and the
 // At 2^15 an ERPT render's memory fell to a third and its time on 2 threads by a fifth
 // (docs/performance.md, "Chains on two threads").
 constexpr size_t kSeedBatchPaths = 1 << 15;
+// What a seed-recording batch reserves per path (traceSamples): vertices of its history, seeds
+// (two per bounce: next-event and emission), and their vertices.
+constexpr size_t kHistoryRowsPerPath = 8, kSeedsPerPath = 8, kSeedVerticesPerPath = 32;
 constexpr size_t kChunkSamples = 16384;  // one task's share of a batch
 constexpr size_t kTaskQueue = 4096;      // paths in flight in one task's wavefront
 constexpr size_t kGrain = 512;
@@ -143,6 +146,14 @@ void traceSamples(const Tracer& tracer, const StageContext& ctx, const PathSampl
   w.reserve(capacity);
   w.freeIds.resize(capacity);
   std::iota(w.freeIds.begin(), w.freeIds.end(), 0u);
+  if (rec) {
+    // Room up front for what a batch of diffuse paths records, so that the columns are not
+    // copied as they grow (one thread, onto pages touched afresh): address space only, whose
+    // pages the parallel stages that write the rows touch first. Longer paths grow beyond it.
+    rec->history.reserve(kHistoryRowsPerPath * capacity);
+    rec->seeds.seeds.reserve(kSeedsPerPath * capacity);
+    rec->seeds.vertices.reserve(kSeedVerticesPerPath * capacity);
+  }
   VertexHistory bounceHistory{rec ? &rec->history : nullptr, 0};
   size_t next = first, live = 0;
   int cur = 0;
