@@ -257,7 +257,10 @@ void checkDetailedBalance(const std::string& sceneFile, const BalanceCase& c, si
   // to it); a wrong T ratio (Veach: theta_max(y) / theta_max(z) inverted or dropped) is off by
   // the ratio of the two angle ranges, tens of percent for most moves.
   EXPECT_LE(invalid, from.size() / 50) << c.name;
-  EXPECT_LT(median, 1e-3) << c.name;
+  // A manifold move's flows carry the chain factor measured by central differences
+  // (specular_chain_jacobian.cpp), whose own error is ~1e-3 (the stage against it: median
+  // 0.5-1.1e-3 over seed sets); left out, the ratio is off by a median of 0.23.
+  EXPECT_LT(median, manifold ? 3e-3 : 1e-3) << c.name;
   EXPECT_LT(p90, 1e-2) << c.name;
 }
 

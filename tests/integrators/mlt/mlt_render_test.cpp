@@ -102,14 +102,16 @@ TEST(StatisticalMlt, DefaultSceneMatchesPathTracerBlockByBlock) {
 // the chains (no direct pass), the chains are an independence sampler whose stationary
 // distribution must be the image. A wrong W (a missing P(n), a technique's share, a roulette
 // factor) moves energy between path lengths, so between lit and shadowed regions (with P(n)
-// dropped: mean z^2 146). Measured: 1.37, worst |z| 3.22 (64 renders: 0.93, 2.65); 24 renders, since chains that only
-// take large steps stay on a path for many steps and their block means are heavy-tailed.
+// dropped: mean z^2 146). Chains that only take large steps stay on a path for many steps, so
+// their block means are heavy-tailed: 48 renders of 64 mutations per pixel (measured: 1.29,
+// worst |z| 2.41); 24 renders of 128 passed with 1.37 and 3.22 on one seed set and failed
+// with 1.75 and 4.92 on another (the seed store's order changed).
 TEST(StatisticalMlt, LargeStepsAloneMatchPathTracerBlockByBlock) {
-  RenderSettings s = mltSettings(128);
+  RenderSettings s = mltSettings(64);
   chainOf(s).directSamples = -1;
   mltOf(s).largeStepProbability = 1;
   mltOf(s).bootstrapSpp = 16;
-  test::expectMatchesPathTracerBlockByBlock(test::cornellBox(), s, 24, 7100);
+  test::expectMatchesPathTracerBlockByBlock(test::cornellBox(), s, 48, 7100);
 }
 
 // Stationarity of Veach's bidirectional mutation alone: no large steps, no perturbations; the
