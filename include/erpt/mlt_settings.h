@@ -11,16 +11,28 @@ namespace erpt {
 
 struct MltSettings {
   float largeStepProbability = 0.3f;  // --large-step-prob (Mitsuba's and pbrt's default)
-  // --bootstrap: path-tracer samples per pixel estimating b; 0: enough for 100,000 samples
-  // (pbrt-v4's default bootstrap), at least 1 per pixel.
+  // --bootstrap: seed-sampler samples per pixel estimating b; 0: sized by the render
+  // (bootstrapSamplesPerPixel).
   int bootstrapSpp = 0;
   int chains = 2048;                  // --chains: Markov chains, started by resampling the bootstrap
 };
 
-// The bootstrap's samples per pixel for an image of `pixels` pixels.
-inline int bootstrapSamplesPerPixel(const MltSettings& m, double pixels) {
+// What one bootstrap sample costs in chain steps (Cornell box, 128x128, 2 threads: 7 for a
+// path-tracer sample, 77 for a BDPT sample, which traces both subpaths and every connection).
+constexpr double kPathSampleSteps = 8, kBdptSampleSteps = 64;
+
+// The bootstrap's samples per pixel for an image of `pixels` pixels whose chains take
+// `mutationsPerPixel` steps per pixel, with seed samples costing `sampleSteps` chain steps each.
+// By default, as many as cost about what the chains do, and at most 100,000 samples in all
+// (pbrt-v4's bootstrap): b's error is the same share of every pixel, so beyond the chains' own
+// cost a larger bootstrap buys less than longer chains would. At least 1 per pixel, so that
+// the contributions the chains do not hold, deposited where the bootstrap found them, reach
+// every pixel.
+inline int bootstrapSamplesPerPixel(const MltSettings& m, double pixels, double mutationsPerPixel, double sampleSteps) {
   if (m.bootstrapSpp > 0) return m.bootstrapSpp;
-  return int(std::max(1.0, std::ceil(100000.0 / std::max(1.0, pixels))));
+  const double byCost = std::ceil(mutationsPerPixel / sampleSteps);
+  const double byCount = std::ceil(100000.0 / std::max(1.0, pixels));
+  return int(std::max(1.0, std::min(byCost, byCount)));
 }
 
 struct MltStats {

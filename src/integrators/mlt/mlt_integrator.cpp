@@ -3,8 +3,8 @@
 //
 //   1. Optional (--direct-samples N): paths of at most one bounce go to the direct-lighting
 //      pass, as in ERPT; the chains hold paths of two or more bounces.
-//   2. Bootstrap (--bootstrap N samples per pixel, by default enough for 100,000 samples as in
-//      pbrt-v4; its own random stream): the path tracer's
+//   2. Bootstrap (--bootstrap N samples per pixel; by default sized by the chains' work, at
+//      most 100,000 samples as pbrt-v4's; its own random stream): the seed sampler's
 //      contributions split into those the chains hold (their domain, mlt_stages.h) and the
 //      rest, which are deposited where they are (their own unbiased estimate). The domain's
 //      total luminance, divided by the samples per pixel, is b, the image's normalisation.
@@ -201,7 +201,8 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   Bootstrap boot{ctx, options.directSamples > 0, {}};
   Film inPlace(s.width, s.height);
   RenderSettings bs = subRenderSettings(s);
-  bs.spp = bootstrapSamplesPerPixel(mltOf(s), double(s.width) * double(s.height));
+  bs.spp = bootstrapSamplesPerPixel(mltOf(s), double(s.width) * double(s.height), double(options.mutationsPerPixel),
+                                    options.seeds == SeedSampler::Bdpt ? kBdptSampleSteps : kPathSampleSteps);
   bs.seed = streamKey(s.seed, kBootstrapStream, 0);
   bs.tracer = setup.sharedTracer;
   const RenderSetup bootSetup(scene, bs, seedFilmMode(options));
@@ -360,7 +361,8 @@ IntegratorModule mltModule() {
                           0, 1, [](auto& s) -> auto& { return mltOf(s).largeStepProbability; }),
                integerOption("bootstrap",
                              "path-tracer samples per pixel of the bootstrap that estimates the image's luminance b "
-                             "and seeds the chains (0: enough for 100,000 samples, at least 1 per pixel)",
+                             "and seeds the chains (0: as many as cost about what the chains do, at most 100,000 samples and "
+                             "at least 1 per pixel)",
                              0, 65536, [](auto& s) -> auto& { return mltOf(s).bootstrapSpp; }),
                integerOption("chains",
                              "Markov chains, started by resampling the bootstrap's paths by luminance; each runs "
