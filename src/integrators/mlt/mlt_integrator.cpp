@@ -360,7 +360,7 @@ IntegratorModule mltModule() {
                           "uniform pixel",
                           0, 1, [](auto& s) -> auto& { return mltOf(s).largeStepProbability; }),
                integerOption("bootstrap",
-                             "path-tracer samples per pixel of the bootstrap that estimates the image's luminance b "
+                             "seed-sampler samples per pixel of the bootstrap that estimates the image's luminance b "
                              "and seeds the chains (0: as many as cost about what the chains do, at most 100,000 samples and "
                              "at least 1 per pixel)",
                              0, 65536, [](auto& s) -> auto& { return mltOf(s).bootstrapSpp; }),

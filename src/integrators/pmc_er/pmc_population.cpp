@@ -370,8 +370,10 @@ void PmcPopulation::iterate(const std::function<void()>& alongside) {
   deposited_ += totals.deposited;
   filters_.discarded += totals.discarded;
   filters_.discardedEnergy += totals.discardedEnergy;
+  ChainStats& chainStats = chainStatsOf(stats_);
   for (size_t l = 0; l < lanes_.size(); ++l)
-    for (const StepRecord& r : records_[l]) collect(l * kPmcLaneSlots + r.row, r);
+    for (const StepRecord& r : records_[l]) collect(l * kPmcLaneSlots + r.row, r, chainStats);
+  tallyStrategies();
   for (size_t i = 0; i < n; ++i) energy_[i] *= 1 - s.resampleRate;
   ++(config_.film ? pmc_.iterations : pmc_.trainingIterations);
   (config_.film ? pmc_.chainSeconds : pmc_.trainSeconds) += secondsSince(start);
@@ -407,11 +409,10 @@ void PmcPopulation::runLane(size_t l, int steps) {
   }
 }
 
-void PmcPopulation::collect(size_t slot, const StepRecord& r) {
+void PmcPopulation::collect(size_t slot, const StepRecord& r, ChainStats& chainStats) {
   const size_t k = size_t(components_);
-  const int w = tracing_.film.width(), h = tracing_.film.height();
-  ++chainStatsOf(stats_).mutations;
-  ++chainStatsOf(stats_).deposits;
+  ++chainStats.mutations;
+  ++chainStats.deposits;
   depositSum_ += r.energy;
   ++depositSteps_;
   if (r.kind == uint8_t(MutationKind::None)) return;
@@ -421,13 +422,25 @@ void PmcPopulation::collect(size_t slot, const StepRecord& r) {
   pmc_.acceptanceSum[c][r.kind] += r.acceptance;
   if (mixture_.adapt() == PmcAdapt::Member) alphaSum_[slot * k + c] += r.acceptance;
   if (!config_.film) regionSums_[size_t(mixture_.regionOf(r.fromX, r.fromY)) * k + c] += r.acceptance;
-  const int px = int(std::floor(r.fromX)), py = int(std::floor(r.fromY));
-  if (px >= 0 && py >= 0 && px < w && py < h) {
-    const size_t pixel = size_t(py) * size_t(w) + size_t(px);
-    stratCount_[pixel] += 1;
-    stratRadius_[pixel] += mixture_.radii()[c];
-    stratAccept_[pixel] += r.acceptance;
-  }
+}
+
+void PmcPopulation::tallyStrategies() {
+  const int w = tracing_.film.width(), h = tracing_.film.height();
+  const std::vector<float>& radii = mixture_.radii();
+  // About four bands per run, whatever the image's height.
+  const size_t grain = std::max<size_t>(1, size_t(h) / 4);
+  forEachRange("pmc strategy tally", size_t(h), grain, [&](IndexRange band) {
+    for (const std::vector<StepRecord>& records : records_)
+      for (const StepRecord& r : records) {
+        if (r.kind == uint8_t(MutationKind::None)) continue;
+        const int px = int(std::floor(r.fromX)), py = int(std::floor(r.fromY));
+        if (px < 0 || px >= w || py < int(band.begin) || py >= int(band.end)) continue;
+        const size_t pixel = size_t(py) * size_t(w) + size_t(px);
+        stratCount_[pixel] += 1;
+        stratRadius_[pixel] += radii[r.component];
+        stratAccept_[pixel] += r.acceptance;
+      }
+  }, &stats_.stages);
 }
 
 void PmcPopulation::settleFilm() {

@@ -109,7 +109,14 @@ class PmcPopulation {
   void iterate(const std::function<void()>& alongside = {});
   // `steps` steps of every member of lane l, on the calling thread.
   void runLane(size_t l, int steps);
-  void collect(size_t slot, const StepRecord& r);
+  // One record's counts and sums, in the serial order (their floating-point sums depend on it).
+  void collect(size_t slot, const StepRecord& r, ChainStats& chainStats);
+  // The records' per-pixel strategy sums (the "strategy" image). Random access to three
+  // pixel-sized arrays made this most of the serial time between iterations, so bands of image
+  // rows run in parallel: each reads every record in the serial order and adds those in its
+  // rows, so that every pixel sums in the same order as one pass would (the same bits for any
+  // thread count).
+  void tallyStrategies();
   void depositRemaining();
   // The end of a run (or a stop): the members deposit what they hold where they stand, then the
   // large deposits and the run's exact film go to the film (when there is one).
