@@ -8,6 +8,7 @@
 
 #include "core/queues.h"
 #include "core/seeds.h"
+#include "kernels/bdpt_vertex.h"
 #include "stages/stages.h"
 #include "tracer/ray_queues.h"
 
@@ -61,6 +62,8 @@ void stageBdptExtend(const BdptContext& ctx, BdptSide side, BdptSubpaths& paths,
 // no subpath (`extra`: lens points of light tracing, next-event light points).
 struct BdptConnectScratch {
   std::vector<BdptVertexQueue::Row> light, camera;
+  std::vector<VertexBsdf> lightBsdf, cameraBsdf;
+  std::vector<int32_t> lightIndex, cameraIndex;
   std::vector<float> cameraDensity, lightDensity;
   std::vector<uint8_t> specular;
   BdptVertexQueue extra;
