@@ -30,9 +30,14 @@ class EnvironmentMap {
 
   Color eval(Vec3 direction) const;  // radiance arriving from world direction `direction`
   // A unit world direction for (u1, u2) in [0, 1)^2 and its solid-angle pdf (false: pdf 0,
-  // only where rounding puts the direction across a pixel edge into a pixel of weight 0).
-  bool sample(float u1, float u2, Vec3& direction, float& pdf) const;
+  // only where rounding puts the direction across a pixel edge into a pixel of weight 0);
+  // with `radiance`, also eval() of the direction.
+  bool sample(float u1, float u2, Vec3& direction, float& pdf, Color* radiance = nullptr) const;
   float pdf(Vec3 direction) const;
+  // eval() and pdf() of one direction, from one trip to uv: the inverse trigonometry was a
+  // fifth of the path tracer's time under an environment map, and an escaping ray or a
+  // sampled direction needs both. The same bits as the two calls.
+  Color evalAndPdf(Vec3 direction, float& pdf) const;
   // Radiance averaged over the sphere of directions (the map's power / (4 pi) per unit area).
   Color mean() const { return mean_; }
   int width() const { return width_; }
@@ -43,6 +48,9 @@ class EnvironmentMap {
   Vec3 uvToDirection(float u, float v) const;
 
  private:
+  Color evalAtUv(float u, float v) const;
+  float pdfAtUv(float u, float v) const;
+
   int width_, height_;
   std::vector<Color> pixels_;    // scaled radiance, row-major, row 0 = +y
   std::vector<float> rowCos_;    // cos(theta) at the row boundaries: height + 1 entries

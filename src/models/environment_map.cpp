@@ -125,6 +125,17 @@ Vec3 EnvironmentMap::uvToDirection(float u, float v) const {
 Color EnvironmentMap::eval(Vec3 direction) const {
   float u, v;
   directionToUv(direction, u, v);
+  return evalAtUv(u, v);
+}
+
+Color EnvironmentMap::evalAndPdf(Vec3 direction, float& pdfOut) const {
+  float u, v;
+  directionToUv(direction, u, v);
+  pdfOut = pdfAtUv(u, v);
+  return evalAtUv(u, v);
+}
+
+Color EnvironmentMap::evalAtUv(float u, float v) const {
   // Bilinear between pixel centres: columns wrap around, rows clamp at the poles.
   const float x = u * float(width_) - 0.5f, y = v * float(height_) - 0.5f;
   const float fx = std::floor(x), fy = std::floor(y);
@@ -135,7 +146,7 @@ Color EnvironmentMap::eval(Vec3 direction) const {
   return (at(x0, y0) * (1 - tx) + at(x1, y0) * tx) * (1 - ty) + (at(x0, y1) * (1 - tx) + at(x1, y1) * tx) * ty;
 }
 
-bool EnvironmentMap::sample(float u1, float u2, Vec3& direction, float& pdfOut) const {
+bool EnvironmentMap::sample(float u1, float u2, Vec3& direction, float& pdfOut, Color* radiance) const {
   float withinRow, withinColumn;
   const size_t r = pickInterval(rowCdf_.data(), size_t(height_), u2, withinRow);
   const size_t c = pickInterval(&columnCdf_[r * (size_t(width_) + 1)], size_t(width_), u1, withinColumn);
@@ -144,13 +155,22 @@ bool EnvironmentMap::sample(float u1, float u2, Vec3& direction, float& pdfOut) 
   const float cosTheta = rowCos_[r] + (rowCos_[r + 1] - rowCos_[r]) * withinRow;
   const float sinTheta = std::sqrt(std::max(0.0f, 1 - cosTheta * cosTheta));
   direction = rowTimes(toWorld_, Vec3(sinTheta * std::sin(phi), cosTheta, -sinTheta * std::cos(phi)));
-  pdfOut = pdf(direction);  // from the direction, so sample() and pdf() agree to the bit
+  // From the direction, so that sample() and pdf() agree to the bit.
+  if (radiance) {
+    *radiance = evalAndPdf(direction, pdfOut);
+  } else {
+    pdfOut = pdf(direction);
+  }
   return pdfOut > 0;
 }
 
 float EnvironmentMap::pdf(Vec3 direction) const {
   float u, v;
   directionToUv(direction, u, v);
+  return pdfAtUv(u, v);
+}
+
+float EnvironmentMap::pdfAtUv(float u, float v) const {
   const int c = std::min(width_ - 1, int(u * float(width_))), r = std::min(height_ - 1, int(v * float(height_)));
   return density_[size_t(r) * width_ + c];
 }

@@ -77,12 +77,12 @@ bool LightSampler::sampleEmission(double uPick, float u1, float u2, float u3, fl
     Vec3 toward;
     float pdf = kUniformSpherePdf;
     if (e.map) {
-      if (!e.map->sample(u3, u4, toward, pdf)) return false;
+      if (!e.map->sample(u3, u4, toward, pdf, &out.value)) return false;
     } else {
       toward = squareToUniformSphere(u3, u4);
+      out.value = e.radiance;
     }
     out.direction = -toward;
-    out.value = e.environmentRadiance(toward);
     out.pdfPosition = prob * pdf;
   }
   out.normal = out.direction;

@@ -164,6 +164,17 @@ float LightSampler::pdfEnvironment(Vec3 direction) const {
   return environmentProbability_ * (environment_->map ? environment_->map->pdf(direction) : kUniformSpherePdf);
 }
 
+Color LightSampler::environmentRadianceAndPdf(const Emitter& env, Vec3 direction, float& pdf) const {
+  if (environmentProbability_ == 0 || environment_ != &env || !env.map) {
+    pdf = pdfEnvironment(direction);
+    return env.environmentRadiance(direction);
+  }
+  float mapPdf;
+  const Color radiance = env.map->evalAndPdf(direction, mapPdf);
+  pdf = environmentProbability_ * mapPdf;
+  return radiance;
+}
+
 bool LightSampler::finishAreaSample(uint32_t primitive, float pdfArea, Vec3 ref, Vec3 p, Vec3 n,
                                     LightSample& out) const {
   out.position = p;
@@ -287,14 +298,14 @@ bool LightSampler::sample(Vec3 ref, double uPick, float u1, float u2, LightSampl
   const Emitter& env = scene_.emitters[item.index];
   float pdfDirection = kUniformSpherePdf;
   if (env.map) {
-    if (!env.map->sample(u1, u2, out.direction, pdfDirection)) return false;
+    if (!env.map->sample(u1, u2, out.direction, pdfDirection, &out.radiance)) return false;
   } else {
     out.direction = squareToUniformSphere(u1, u2);
+    out.radiance = env.radiance;
   }
   out.distance = std::numeric_limits<float>::infinity();
   out.position = sceneCenter_ + out.direction * (4 * sceneRadius_);
   out.emitter = int(item.index);
-  out.radiance = env.environmentRadiance(out.direction);
   out.pdf = prob * pdfDirection;
   out.pdfLight = out.pdf;
   out.environment = true;

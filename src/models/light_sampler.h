@@ -75,6 +75,9 @@ class LightSampler {
   float pdfSolidAngle(const SurfacePoint& light, Vec3 ref) const;
   // Solid-angle pdf that sample() picks the environment along world direction `direction`.
   float pdfEnvironment(Vec3 direction) const;
+  // env.environmentRadiance(direction) and pdfEnvironment(direction) together, with one lookup
+  // of the map when env is the environment this sampler picks (the same bits as the two calls).
+  Color environmentRadianceAndPdf(const Emitter& env, Vec3 direction, float& pdf) const;
   // Area-measure density at point p (normal n) of `primitive` of sample() from `ref`
   // (p_light * p_area).
   float pdfArea(uint32_t primitive, Vec3 ref, Vec3 p, Vec3 n) const;

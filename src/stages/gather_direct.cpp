@@ -21,7 +21,11 @@ void stageGatherDirect(const StageContext& ctx, const RayQueue& shadowRays, cons
       if (bsdfHits.geomID[i] == kRefusedRay) {  // the sample is invalid: the film drops and counts it
         total = Color(std::numeric_limits<float>::quiet_NaN());
       } else if (bsdfHits.geomID[i] == kNoHit) {
-        if (env) total += weight * env->environmentRadiance(dir) * emitterHitWeight(pdf, ctx.lights.pdfEnvironment(dir));
+        if (env) {
+          float lightPdf;
+          const Color le = ctx.lights.environmentRadianceAndPdf(*env, dir, lightPdf);
+          total += weight * le * emitterHitWeight(pdf, lightPdf);
+        }
       } else {
         SurfacePoint lp = surfaceAt(ctx.scene, bsdfHits.primID[i], bsdfHits.u[i], bsdfHits.v[i]);
         Color le = ctx.lights.emitted(lp, -dir);

@@ -54,8 +54,9 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     }
     if (hits.geomID[k] == kNoHit) {
       if (!env) continue;
-      const Color le = env->environmentRadiance(dir);
-      const float w = emitterHitWeight(prevPdf, ctx.lights.pdfEnvironment(dir));
+      float lightPdf;
+      const Color le = ctx.lights.environmentRadianceAndPdf(*env, dir, lightPdf);
+      const float w = emitterHitWeight(prevPdf, lightPdf);
       addRadiance(paths, id, throughput * le * w);
       if (recording) {
         VertexQueue::Row v;  // the whole row: pdfForward 0 and the parent link are written too
