@@ -140,7 +140,8 @@ Color EnvironmentMap::evalAtUv(float u, float v) const {
   const float x = u * float(width_) - 0.5f, y = v * float(height_) - 0.5f;
   const float fx = std::floor(x), fy = std::floor(y);
   const float tx = x - fx, ty = y - fy;
-  const int x0 = (int(fx) % width_ + width_) % width_, x1 = (x0 + 1) % width_;
+  // u in [0, 1) puts fx in [-1, width - 1]: one wrap at each edge (no integer division).
+  const int x0 = int(fx) < 0 ? width_ - 1 : int(fx), x1 = x0 + 1 == width_ ? 0 : x0 + 1;
   const int y0 = std::clamp(int(fy), 0, height_ - 1), y1 = std::clamp(int(fy) + 1, 0, height_ - 1);
   auto at = [&](int px, int py) { return pixels_[size_t(py) * width_ + px]; };
   return (at(x0, y0) * (1 - tx) + at(x1, y0) * tx) * (1 - ty) + (at(x0, y1) * (1 - tx) + at(x1, y1) * tx) * ty;

@@ -98,6 +98,31 @@ TEST(EnvironmentMap, SampledDirectionsFollowThePdf) {
   EXPECT_EQ(mismatched, 0u);
 }
 
+// The one-lookup forms (evalAndPdf, sample with its radiance) return the bits of eval() and
+// pdf(): the renderers use them interchangeably (an escaping ray's radiance and light pdf, a
+// sampled direction's radiance). Directions from sampling and uniform ones, on a map whose
+// columns wrap (the bilinear lookup at u near 0 and 1).
+TEST(EnvironmentMap, OneLookupFormsEqualEvalAndPdf) {
+  const EnvironmentMap map(numberedImage(7, 5), 1.5f, Transform::rotate(0.3f, 1, 0.2f, 50));
+  size_t checked = 0;
+  for (uint64_t i = 0; i < 20000; ++i) {
+    Vec3 d;
+    float pdf;
+    Color radiance;
+    if (map.sample(test::testUniform(i, 0), test::testUniform(i, 1), d, pdf, &radiance)) {
+      ASSERT_EQ(pdf, map.pdf(d));
+      for (int c = 0; c < 3; ++c) ASSERT_EQ(radiance[c], map.eval(d)[c]);
+      ++checked;
+    }
+    const Vec3 u = squareToUniformSphere(test::testUniform(i, 2), test::testUniform(i, 3));
+    float pdfU;
+    const Color le = map.evalAndPdf(u, pdfU);
+    ASSERT_EQ(pdfU, map.pdf(u));
+    for (int c = 0; c < 3; ++c) ASSERT_EQ(le[c], map.eval(u)[c]);
+  }
+  EXPECT_GT(checked, 19000u);
+}
+
 // Per pixel of the map: the counts of sampled directions against pdf x the pixel's solid
 // angle (exact, since the pdf is constant over a pixel), chi-square.
 void expectSampledPixelsFollowThePdf(const EnvironmentMap& map) {
