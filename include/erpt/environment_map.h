@@ -15,6 +15,7 @@
 // direction, and sample() returns pdf() of the direction it made.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "erpt/image_io.h"
@@ -56,6 +57,9 @@ class EnvironmentMap {
   std::vector<float> rowCos_;    // cos(theta) at the row boundaries: height + 1 entries
   std::vector<float> rowCdf_;    // height + 1 entries
   std::vector<float> columnCdf_;  // per row: width + 1 entries
+  // Guide tables of the CDFs (buckets + 1 entries each; environment_map.cpp's pickInterval).
+  size_t rowBuckets_ = 1, columnBuckets_ = 1;
+  std::vector<uint32_t> rowGuide_, columnGuide_;
   std::vector<float> density_;   // per pixel: the solid-angle pdf of directions in it
   Color mean_;
   Vec3 toWorld_[3], toLocal_[3];  // rotation rows (to_world's 3x3, orthonormalised)

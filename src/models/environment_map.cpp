@@ -10,10 +10,27 @@ namespace erpt {
 
 namespace {
 
+// Buckets of a CDF's guide: a power of two (so that u * buckets and k / buckets are exact in
+// float), about one per four intervals, at most 1024.
+size_t guideBuckets(size_t n) {
+  size_t g = 1;
+  while (g < n / 4 && g < 1024) g *= 2;
+  return g;
+}
+
+// guide[k] = upperBoundIndex(cdf, n + 1, k / buckets), k = 0 .. buckets.
+void buildGuide(const float* cdf, size_t n, size_t buckets, uint32_t* guide) {
+  for (size_t k = 0; k <= buckets; ++k) guide[k] = uint32_t(upperBoundIndex(cdf, n + 1, float(k) / float(buckets)));
+}
+
 // Index of the interval of `cdf` (n + 1 increasing entries from 0 to 1) that holds u, and u's
-// position within it in [0, 1).
-size_t pickInterval(const float* cdf, size_t n, float u, float& within) {
-  size_t i = upperBoundIndex(cdf, n + 1, u);
+// position within it in [0, 1). The guide narrows the search: for u in bucket b = floor(u G),
+// b / G <= u < (b + 1) / G, so the first entry above u lies in [guide[b], guide[b + 1]] and
+// the search there finds the index a search of the whole CDF finds.
+size_t pickInterval(const float* cdf, size_t n, const uint32_t* guide, size_t buckets, float u, float& within) {
+  const size_t b = std::min(buckets - 1, size_t(u * float(buckets)));
+  const size_t lo = guide[b], hi = guide[b + 1];
+  size_t i = lo + upperBoundIndex(cdf + lo, hi - lo, u);
   i = std::min(n - 1, i > 0 ? i - 1 : 0);
   // Skip empty intervals the search may land on (u at a boundary of zero-probability cells).
   while (i + 1 < n && !(cdf[i + 1] > cdf[i])) ++i;
@@ -103,6 +120,14 @@ EnvironmentMap::EnvironmentMap(const RgbImage& image, float scale, const Transfo
     rowCdf_[size_t(r) + 1] = float(running / total);
   }
   rowCdf_[size_t(height_)] = 1.0f;
+  rowBuckets_ = guideBuckets(size_t(height_));
+  columnBuckets_ = guideBuckets(size_t(width_));
+  rowGuide_.resize(rowBuckets_ + 1);
+  buildGuide(rowCdf_.data(), size_t(height_), rowBuckets_, rowGuide_.data());
+  columnGuide_.resize(size_t(height_) * (columnBuckets_ + 1));
+  for (size_t r = 0; r < size_t(height_); ++r)
+    buildGuide(&columnCdf_[r * (size_t(width_) + 1)], size_t(width_), columnBuckets_,
+               &columnGuide_[r * (columnBuckets_ + 1)]);
   // The pdf is constant over each pixel's solid angle: its weight / the weighted total.
   density_.resize(pixels_.size());
   for (size_t i = 0; i < density_.size(); ++i) density_[i] = float(weight[i] / total);
@@ -149,8 +174,9 @@ Color EnvironmentMap::evalAtUv(float u, float v) const {
 
 bool EnvironmentMap::sample(float u1, float u2, Vec3& direction, float& pdfOut, Color* radiance) const {
   float withinRow, withinColumn;
-  const size_t r = pickInterval(rowCdf_.data(), size_t(height_), u2, withinRow);
-  const size_t c = pickInterval(&columnCdf_[r * (size_t(width_) + 1)], size_t(width_), u1, withinColumn);
+  const size_t r = pickInterval(rowCdf_.data(), size_t(height_), rowGuide_.data(), rowBuckets_, u2, withinRow);
+  const size_t c = pickInterval(&columnCdf_[r * (size_t(width_) + 1)], size_t(width_),
+                                &columnGuide_[r * (columnBuckets_ + 1)], columnBuckets_, u1, withinColumn);
   // Uniform in solid angle within the pixel: phi uniform, cos(theta) uniform between its rows.
   const float phi = 2 * kPi * (float(c) + withinColumn) / float(width_);
   const float cosTheta = rowCos_[r] + (rowCos_[r + 1] - rowCos_[r]) * withinRow;
