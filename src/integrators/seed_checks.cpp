@@ -22,17 +22,17 @@ bool litByDirectionalLight(const StepConfig& ctx, const SeedStore& store, size_t
 }
 }  // namespace
 
-void foldSeedTail(const StepConfig& ctx, SeedStore& store, size_t i) {
+void foldSeedTail(const StepConfig& ctx, SeedStore& store, size_t i, int keep) {
   const uint32_t n = store.seeds.vertexCount[i];
-  if (n <= uint32_t(kMaxChainVertices) || litByDirectionalLight(ctx, store, i)) return;
+  if (n <= uint32_t(keep) || litByDirectionalLight(ctx, store, i)) return;
   std::vector<PathVertex> path(n);
   const size_t begin = store.seeds.vertexBegin[i];
   for (uint32_t j = 0; j < n; ++j) loadPathVertex(store.vertices, begin + j, path[j]);
-  const int t = kMaxChainVertices - 1;
+  const int t = keep - 1;
   PathVertex tail = path[size_t(t)];
   setTailVertexFactor(tail, factors::fixedTail(ctx.measure, path.data(), int(n), t));
   storePathVertex(store.vertices, begin + size_t(t), tail);
-  store.seeds.vertexCount[i] = uint32_t(kMaxChainVertices);
+  store.seeds.vertexCount[i] = uint32_t(keep);
 }
 
 InPlaceReason seedSignatureReason(const StepConfig& ctx, const SeedStore& store, size_t i) {

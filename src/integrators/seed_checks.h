@@ -11,9 +11,9 @@ namespace erpt {
 // Whether a seed is for the chains (not left to the direct-lighting pass).
 bool seedForChains(const SeedStore& store, size_t i, bool excludeDirect);
 // A seed longer than a chain holds becomes its folded form in place (foldPathTail: vertex
-// kMaxChainVertices - 1 a tail vertex carrying the factor of the rest); its contribution and
-// film position do not change. Call before the checks below.
-void foldSeedTail(const StepConfig& ctx, SeedStore& store, size_t i);
+// keep - 1 a tail vertex carrying the factor of the rest, keep = kMaxChainVertices for the
+// chains); its contribution and film position do not change. Call before the checks below.
+void foldSeedTail(const StepConfig& ctx, SeedStore& store, size_t i, int keep = kMaxChainVertices);
 // Why seed `i` (folded) cannot start a moving chain judging by its signature (no mutation the
 // strategy may pick applies, a directional light; kInPlaceReasonCount: it can).
 InPlaceReason seedSignatureReason(const StepConfig& ctx, const SeedStore& store, size_t i);

@@ -66,7 +66,7 @@ bool reflectsAt(const PathVertex* path, int j) {
 
 uint64_t packSignature(const uint8_t* kinds, int n) {
   uint64_t s = 0;
-  for (int j = 0; j < n && j < 16; ++j) s |= uint64_t(kinds[j] & 15u) << (4 * j);
+  for (int j = 0; j < n && j < kMaxChainVertices; ++j) s |= uint64_t(kinds[j]) << (kSignatureBitsPerVertex * j);
   return s;
 }
 

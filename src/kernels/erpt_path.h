@@ -16,7 +16,10 @@ namespace erpt {
 // Most vertices a chain holds (eye and light included). A longer path is folded: its vertex
 // kMaxChainVertices - 1 becomes a tail vertex carrying the fixed factor of the rest
 // (foldPathTail), which no perturbation moves, so chains hold paths of any length.
-constexpr int kMaxChainVertices = 12;
+// 21 vertices: the signature packs each vertex kind into 3 bits of 64, and the longest
+// specular chains of the benchmark scenes (light bouncing between a pool's floor and its water
+// surface, E S D S D ... L) have up to 19.
+constexpr int kMaxChainVertices = 21;
 
 // The tail vertex's fixed factor R: everything from it to the light in area measure, its own
 // area factor as seen from the vertex before it included (stored in its shading-normal field,
@@ -34,9 +37,14 @@ Vec3 directionBetween(const PathVertex& a, const PathVertex& b);
 // True when the path reflects at vertex j (its neighbours lie on the same side of it).
 bool reflectsAt(const PathVertex* path, int j);
 
-// A path's signature: its vertex kinds, 4 bits per vertex (mutations preserve it).
+// A path's signature: its vertex kinds, 3 bits per vertex (mutations preserve it).
+constexpr int kSignatureBitsPerVertex = 3;
+static_assert(kTailVertex < (1 << kSignatureBitsPerVertex), "every VertexKind fits a signature's bits");
+static_assert(kMaxChainVertices * kSignatureBitsPerVertex <= 64, "a chain's signature fits 64 bits");
 uint64_t packSignature(const uint8_t* kinds, int n);
-inline uint8_t kindAt(uint64_t signature, int j) { return uint8_t((signature >> (4 * j)) & 15u); }
+inline uint8_t kindAt(uint64_t signature, int j) {
+  return uint8_t((signature >> (kSignatureBitsPerVertex * j)) & ((1u << kSignatureBitsPerVertex) - 1));
+}
 // kinds must hold kMaxChainVertices entries.
 inline void unpackSignature(uint64_t signature, int n, uint8_t* kinds) {
   for (int j = 0; j < n && j < kMaxChainVertices; ++j) kinds[j] = kindAt(signature, j);

@@ -55,7 +55,7 @@ struct ManifoldVertex {
 };
 
 // Most vertices a chain may have (its two ends included).
-constexpr int kMaxManifoldVertices = 16;
+constexpr int kMaxManifoldVertices = 24;
 
 // A chain's vertices, held in place: a stage's thousands of walks allocate nothing. (The
 // part of std::vector's interface the walks use.)

@@ -13,7 +13,7 @@
   F(uint32_t, step, {}, "steps taken so far (the random dimension base)")                           \
   F(uint32_t, stepsLeft, {}, "steps still to run; 0: the slot is free")                             \
   F(uint8_t, vertexCount, {}, "vertices of the current path, eye and light included")               \
-  F(uint64_t, signature, {}, "vertex kinds of the current path, 4 bits each (erpt_path.h)")         \
+  F(uint64_t, signature, {}, "vertex kinds of the current path, 3 bits each (erpt_path.h)")         \
   F(float, fLum, {}, "lum(f) of the current path in the measure of mutation fKind (a cache)")       \
   F(uint8_t, fKind, {}, "MutationKind whose measure fLum is in (Mutation::measure); None: not known") \
   C(tail, "fixed tail of f for mutation tailKind (erpt_path.h)")                                    \

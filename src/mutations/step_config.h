@@ -55,11 +55,14 @@ struct StepConfig {
 // and technique from kDimStart1, kDimStart2 and kDimPerturb (no perturbation uses them then).
 // kDimManifold: the coin for the manifold perturbation.
 enum StepDim : uint32_t {
-  kDimStrategy = 0, kDimAccept, kDimStart1, kDimStart2, kDimPerturb, kDimLargeStep = 28, kDimManifold = 29, kDimComponent = 30,
-  kDimBidirectional = 31,
-  kStepDims = 32
+  kDimStrategy = 0, kDimAccept, kDimStart1, kDimStart2, kDimPerturb, kDimLargeStep = 46, kDimManifold = 47, kDimComponent = 48,
+  kDimBidirectional = 49,
+  kStepDims = 50
 };
 static_assert(kDimPerturb + 2 * kMaxChainVertices <= kDimLargeStep, "step dimensions overlap");
+// The most steps a chain may take before its dimensions would wrap around 32 bits (and repeat
+// its first steps' numbers); the chain drivers keep every chain below it.
+constexpr uint32_t kMaxChainSteps = UINT32_MAX / kStepDims;
 inline uint32_t stepDim(uint32_t step, uint32_t use) { return step * kStepDims + use; }
 
 }  // namespace erpt

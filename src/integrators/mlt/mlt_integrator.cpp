@@ -256,7 +256,10 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   // The chains' start states; the second trace runs only the samples that made them (the
   // same paths, bit for bit: a sample's random stream is keyed by its pixel and number).
   const double mutations = mutationsRequested;
-  const size_t chains = boot.energies.empty() ? 0 : size_t(std::min<double>(mltOf(s).chains, mutations));
+  // At least enough chains that none runs past kMaxChainSteps.
+  const size_t chains = boot.energies.empty() ? 0
+                                              : size_t(std::min<double>(std::max<double>(mltOf(s).chains, std::ceil(mutations / kMaxChainSteps)),
+                                                                        mutations));
   const uint32_t length = chains ? uint32_t(std::max(1.0, std::round(mutations / double(chains)))) : 0;
   // The chains' starts: systematic resampling of the domain contributions by luminance.
   const std::vector<size_t> chosen =
