@@ -52,6 +52,8 @@ enum InPlaceReason : uint8_t {
   kInPlaceNoDepositEnergy,   // e_d = 0: the pilot pass found no seed energy
   kInPlaceDirectionalLight,  // lit by a directional light: no mutation moves such paths yet
   kInPlaceFoldedChain,       // longer than a chain holds, and no mutation moves its vertices before the folded tail
+  kInPlaceTooLong,           // MLT (which does not fold): more vertices than a chain holds
+  kInPlaceOutsideLargeStep,  // MLT: the large step cannot make the path (W = 0), so it is outside the chains' domain
   kInPlaceReasonCount
 };
 const char* inPlaceReasonName(InPlaceReason r);

@@ -36,6 +36,18 @@ void printChainMoves(const char* prefix, const ChainStats& e) {
   std::fprintf(stderr, " no mutation %llu\n", (unsigned long long)e.proposed[size_t(MutationKind::None)]);
 }
 
+void printInPlaceReasons(const char* prefix, const ChainStats& e) {
+  uint64_t total = 0;
+  for (uint64_t n : e.inPlace) total += n;
+  std::fprintf(stderr, "%s: seeds deposited in place %llu", prefix, (unsigned long long)total);
+  const char* separator = ":";  // the reasons that occurred
+  for (int r = 0; r < kInPlaceReasonCount; ++r)
+    if (e.inPlace[r] > 0) {
+      std::fprintf(stderr, "%s %s %llu", separator, inPlaceReasonName(InPlaceReason(r)), (unsigned long long)e.inPlace[r]);
+      separator = ",";
+    }
+}
+
 void printRejections(const char* prefix, const ChainStats& e) {
   std::fprintf(stderr, "%s: rejected:", prefix);
   for (int r = kRejectNoMutation; r < kRejectReasonCount; ++r)

@@ -21,6 +21,9 @@ void printMltSummary(const RenderStats& stats);
 // as one line each after `prefix:` (the chain integrators' summaries).
 void printChainMoves(const char* prefix, const ChainStats& stats);
 void printRejections(const char* prefix, const ChainStats& stats);
+// "PREFIX: seeds deposited in place N: <reason> n, ..." (ChainStats::inPlace, the reasons that
+// occurred), no line end.
+void printInPlaceReasons(const char* prefix, const ChainStats& stats);
 // "stage seconds:" and the seconds of each of the chain engine's stages, ending the line.
 void printChainStageSeconds(const RenderStats& stats);
 

@@ -49,6 +49,8 @@ const char* inPlaceReasonName(InPlaceReason r) {
     case kInPlaceNoDepositEnergy: return "no deposition energy (e_d = 0)";
     case kInPlaceDirectionalLight: return "directional light";
     case kInPlaceFoldedChain: return "too long: folded tail, nothing before it moves";
+    case kInPlaceTooLong: return "too long for a chain";
+    case kInPlaceOutsideLargeStep: return "no large step makes it";
     default: return "?";
   }
 }

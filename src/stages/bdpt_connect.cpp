@@ -187,10 +187,10 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
       const Vec3 towardCamera = directionTo(y, cam[j - 1]);
       const Color f = cameraBsdf[j].eval(towardCamera, ls.direction);
       if (isBlack(f)) continue;
-      const BdptVertex z = lightVertexOf(scene, ls);
+      BdptVertex lightVertex = lightVertexOf(scene, ls);
+      const BdptVertex& z = lightVertex;  // its densities, set next, are read only by the MIS weight
       float pdfPosition, pdfDirection;
       lights.emissionDensity(z.emitter, z.primitive, z.ng, -ls.direction, pdfPosition, pdfDirection);
-      BdptVertex lightVertex = z;
       lightVertex.pdfForward = pdfPosition;
       lightVertex.pdfReverse = 0;
       mis.build(cam.data(), j + 1, &lightVertex, 1,
@@ -253,6 +253,7 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
       eye.p = camera.lensPoint(uniformFloat(lightKey, kDimLensX), uniformFloat(lightKey, kDimLensY));
       eye.ng = camera.forward();
       eye.pdfForward = 1;
+      int32_t eyeIndex = 0;  // the lens point's extra vertex, added with the sample's first splat
       for (int s = 1; s <= nL; ++s) {
         const BdptVertex& z = light[s - 1];
         if (!keep(s, 1)) continue;
@@ -281,7 +282,8 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
         const Color value = z.beta * fz * (std::abs(dot(z.ng, w)) / d2 * importance * misWeight);
         if (isBlack(value)) continue;
         const Vec3 origin = offsetOrigin(z.p, z.ng, -w);
-        addConnection(sample, s, 1, value, misWeight, addExtra(eye), lightIndex[size_t(s - 1)], &origin, eye.p, fx, fy);
+        if (eyeIndex == 0) eyeIndex = addExtra(eye);
+        addConnection(sample, s, 1, value, misWeight, eyeIndex, lightIndex[size_t(s - 1)], &origin, eye.p, fx, fy);
       }
     }
     radiance[i] = Color(0.0f);

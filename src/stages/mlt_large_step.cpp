@@ -48,13 +48,24 @@ const ProposalPolicy& mltChooser() {
   return chooser;
 }
 
-float mltDomainWeight(const StepConfig& ctx, const PathVertex* path, int n, float filmX, float filmY) {
+InPlaceReason mltDomainReason(const StepConfig& ctx, const PathVertex* path, int n, float filmX, float filmY, float& w) {
   const LargeStepModel& m = *ctx.largeSteps;
-  if (n < m.minVertices || n > m.maxVertices) return 0.0f;
+  w = 0;
+  // Shorter paths are the direct pass's (seedForChains leaves them out before this).
+  if (n < m.minVertices) return kInPlaceNoMutation;
+  if (n > m.maxVertices) return kInPlaceTooLong;
   const int32_t light = path[n - 1].emitter;
-  if (light >= 0 && ctx.measure.scene.emitters[size_t(light)].kind == EmitterKind::Directional) return 0.0f;
-  if (pathHasZeroContribution(ctx, path, n, filmX, filmY)) return 0.0f;
-  return largeStepWeight(ctx.measure, m, path, n);
+  if (light >= 0 && ctx.measure.scene.emitters[size_t(light)].kind == EmitterKind::Directional)
+    return kInPlaceDirectionalLight;
+  if (pathHasZeroContribution(ctx, path, n, filmX, filmY)) return kInPlaceZeroContribution;
+  w = largeStepWeight(ctx.measure, m, path, n);
+  return w > 0 ? kInPlaceReasonCount : kInPlaceOutsideLargeStep;
+}
+
+float mltDomainWeight(const StepConfig& ctx, const PathVertex* path, int n, float filmX, float filmY) {
+  float w;
+  mltDomainReason(ctx, path, n, filmX, filmY, w);
+  return w;
 }
 
 void largeStepSample(const ChainQueue& chains, size_t slot, uint32_t pixels, uint32_t& pixel, uint32_t& sample) {

@@ -21,6 +21,8 @@ const ProposalPolicy& mltChooser();
 // by it and the large step rejects what lies outside, so the chains and the bootstrap's
 // in-place estimate share every path exactly once.
 float mltDomainWeight(const StepConfig& ctx, const PathVertex* path, int n, float filmX, float filmY);
+// The same test, saying why a path lies outside (kInPlaceReasonCount: inside, with W in `w`).
+InPlaceReason mltDomainReason(const StepConfig& ctx, const PathVertex* path, int n, float filmX, float filmY, float& w);
 
 // The path-tracer sample of the large step of chain `slot`: a pixel uniform over the image
 // and a sample number hashed from the chain's key and step (its random stream is then

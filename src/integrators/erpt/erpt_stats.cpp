@@ -10,18 +10,13 @@ namespace erpt {
 void printErptSummary(const RenderStats& stats) {
   const ChainStats& e = chainStatsOf(stats);
   auto pct = [](uint64_t a, uint64_t b) { return b ? 100.0 * double(a) / double(b) : 0.0; };
-  uint64_t inPlace = 0;
-  for (uint64_t n : e.inPlace) inPlace += n;
   std::fprintf(stderr,
                "erpt: e_ave %.4g, e_d %.4g; %llu seeds, %llu chains, %llu mutations (%.2f M/s in %.2f s of chain "
                "loop), %llu deposits\n",
                e.pilotEnergy, e.depositEnergy, (unsigned long long)e.seeds, (unsigned long long)e.chains,
                (unsigned long long)e.mutations, e.chainSeconds > 0 ? double(e.mutations) / e.chainSeconds * 1e-6 : 0.0,
                e.chainSeconds, (unsigned long long)e.deposits);
-  std::fprintf(stderr, "erpt: seeds deposited in place %llu:", (unsigned long long)inPlace);
-  for (int r = 0; r < kInPlaceReasonCount; ++r)
-    std::fprintf(stderr, "%s %s %llu", r == 0 ? "" : ",", inPlaceReasonName(InPlaceReason(r)),
-                 (unsigned long long)e.inPlace[r]);
+  printInPlaceReasons("erpt", e);
   std::fprintf(stderr, "; seeds with capped chain counts %llu\n", (unsigned long long)e.cappedSeeds);
   printChainMoves("erpt", e);
   if (e.discardedDeposits > 0)

@@ -129,7 +129,7 @@ struct Bootstrap {
   double energyByLength[kMaxChainVertices + 1] = {}, neeEnergyByLength[kMaxChainVertices + 1] = {};
   double total = 0;                          // sum of energies
   // Calls `domain(batch, i, ordinal)` for every contribution the chains hold, in order, and
-  // `outside(batch, i)` for every other one with energy.
+  // `outside(batch, i, reason)` for every other one with energy.
   template <class Domain, class Outside>
   void classify(const SeedStore& batch, Domain&& domain, Outside&& outside, size_t& ordinal) const {
     PathVertex path[kMaxChainVertices];
@@ -139,14 +139,15 @@ struct Bootstrap {
       if (!(e > 0) || !std::isfinite(e)) continue;
       const int n = int(batch.seeds.vertexCount[i]);
       float w = 0;
+      InPlaceReason why = kInPlaceTooLong;
       if (n <= kMaxChainVertices) {
         for (int j = 0; j < n; ++j) loadPathVertex(batch.vertices, batch.seeds.vertexBegin[i] + size_t(j), path[j]);
-        w = mltDomainWeight(ctx, path, n, batch.seeds.filmX[i], batch.seeds.filmY[i]);
+        why = mltDomainReason(ctx, path, n, batch.seeds.filmX[i], batch.seeds.filmY[i], w);
       }
       if (w > 0)
         domain(batch, i, ordinal++);
       else
-        outside(batch, i);
+        outside(batch, i, why);
     }
   }
 };
@@ -157,8 +158,10 @@ void validateMltSettings(const RenderSettings& s) {
   validateChainOptions(chainOf(s));
   const MltSettings& m = mltOf(s);
   const double mutations = double(chainOf(s).mutationsPerPixel) * double(s.width) * double(s.height);
-  if (mutations / double(m.chains) > double(1 << 30))
-    throw UsageError("--mutations-per-pixel x pixels / --chains gives more than 2^30 steps per chain; raise --chains");
+  // A chain's random dimensions are 32-bit (stepDim): past kMaxChainSteps they would repeat.
+  if (mutations / double(m.chains) > double(kMaxChainSteps))
+    throw UsageError("--mutations-per-pixel x pixels / --chains gives more than " + std::to_string(kMaxChainSteps) +
+                     " steps per chain; raise --chains");
   if (chainOf(s).pmFilterRadius >= 0 || chainOf(s).maxConsecutive > 0)
     throw UsageError("--pm-filter and --max-consecutive are ERPT's noise filters; mlt does not take them");
   if (erptOf(s).flow != FlowRule::EqualDeposition) throw UsageError("--flow is ERPT's; mlt does not take it");
@@ -230,9 +233,10 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
           boot.total += e;
           origins.push_back({b.seeds.path[i], uint16_t(b.seeds.vertexCount[i]), b.seeds.explicitLight[i]});
         },
-        [&](const SeedStore& b, size_t i) {
+        [&](const SeedStore& b, size_t i, InPlaceReason why) {
           ms.inPlaceEnergy += depositSeedInPlace(density, b, i, luminance(b.contribution(i)), inPlace);
           ++ms.inPlaceSeeds;
+          ++chainStatsOf(stats).inPlace[why];
         },
         ordinal);
   };
@@ -256,10 +260,7 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   // The chains' start states; the second trace runs only the samples that made them (the
   // same paths, bit for bit: a sample's random stream is keyed by its pixel and number).
   const double mutations = mutationsRequested;
-  // At least enough chains that none runs past kMaxChainSteps.
-  const size_t chains = boot.energies.empty() ? 0
-                                              : size_t(std::min<double>(std::max<double>(mltOf(s).chains, std::ceil(mutations / kMaxChainSteps)),
-                                                                        mutations));
+  const size_t chains = boot.energies.empty() ? 0 : size_t(std::min<double>(mltOf(s).chains, mutations));
   const uint32_t length = chains ? uint32_t(std::max(1.0, std::round(mutations / double(chains)))) : 0;
   // The chains' starts: systematic resampling of the domain contributions by luminance.
   const std::vector<size_t> chosen =

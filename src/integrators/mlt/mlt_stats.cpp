@@ -31,6 +31,8 @@ void printMltSummary(const RenderStats& stats) {
                (unsigned long long)m.chains, (unsigned long long)m.chainLength, (unsigned long long)e.mutations,
                m.chainSeconds > 0 ? double(e.mutations) / m.chainSeconds * 1e-6 : 0.0, m.chainSeconds, m.energyPerStep,
                (unsigned long long)e.rays);
+  printInPlaceReasons("mlt", e);
+  std::fprintf(stderr, "\n");
   printChainMoves("mlt", e);
   printRejections("mlt", e);
   std::fprintf(stderr, "mlt: ");

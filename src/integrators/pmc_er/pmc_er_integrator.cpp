@@ -210,6 +210,7 @@ RgbImage renderPmcEr(const Scene& scene, const RenderSettings& requested, Render
     sumCounters(share, {&stats.samples, &stats.rays, &stats.invalidSamples, &es.mutations, &es.deposits, &es.rays,
                         &ps.iterations, &ps.drainIterations, &ps.poolSize, &ps.poolUsed, &ps.candidates,
                         &ps.inPlaceSeeds, &ps.membersBorn, &ps.eliminated, &ps.split, &ps.steps});
+    for (uint64_t& reason : es.inPlace) sumCounters(share, {&reason});
   };
   auto image = [&](int done, std::vector<std::pair<std::string, RgbImage>>* extras) {
     RgbImage shown = redistributionImage(s, setup.film.resolve(double(done)), direct,

@@ -215,8 +215,9 @@ void PmcPopulation::absorb(SeedStore& batch, const PoolRounds& rounds, size_t fi
     if (!(e > 0) || !std::isfinite(e)) continue;
     pmc_.poolEnergy += e;
     foldSeedTail(ctx, batch, i);
-    if (seedSignatureReason(ctx, batch, i) != kInPlaceReasonCount) {
+    if (const InPlaceReason why = seedSignatureReason(ctx, batch, i); why != kInPlaceReasonCount) {
       ++pmc_.inPlaceSeeds;
+      ++chainStatsOf(stats_).inPlace[why];
       if (config_.film) deposited_ += depositSeedInPlace(ctx.measure.film, batch, i, e, *config_.film);
       continue;
     }
@@ -246,6 +247,7 @@ void PmcPopulation::absorb(SeedStore& batch, const PoolRounds& rounds, size_t fi
   for (size_t k = 0; k < picks.size(); ++k) {
     if (zero[k]) {
       ++pmc_.inPlaceSeeds;
+      ++chainStatsOf(stats_).inPlace[kInPlaceZeroContribution];
       if (config_.film) deposited_ += depositSeedInPlace(ctx.measure.film, batch, picks[k], pickEnergy[k], *config_.film);
       continue;
     }

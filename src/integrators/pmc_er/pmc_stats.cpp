@@ -52,6 +52,8 @@ void printPmcSummary(const RenderStats& stats) {
                (unsigned long long)p.trainingIterations, (unsigned long long)p.population,
                (unsigned long long)p.poolUsed, (unsigned long long)p.poolSize, (unsigned long long)p.candidates,
                (unsigned long long)p.inPlaceSeeds);
+  printInPlaceReasons("pmc-er", e);
+  std::fprintf(stderr, "\n");
   if (p.requestedPopulation > p.population)
     std::fprintf(stderr, "pmc-er: note: --population %llu is more than the pool's %llu positions (pixels x spp); %llu members ran\n",
                  (unsigned long long)p.requestedPopulation, (unsigned long long)p.population, (unsigned long long)p.population);

@@ -147,5 +147,21 @@ TEST(StatisticalMlt, PlasticBoxMatchesPathTracerBlockByBlock) {
   test::expectMatchesPathTracerBlockByBlock(loadScene(test::sourceDir() + "/tests/data/plastic-box.xml"), s, 16, 7200);
 }
 
+// Contributions the chains cannot hold are deposited in place and counted by reason: under a
+// directional light (tests/data/directional.xml) many are, for that reason, and the reasons
+// add up to the total the summary gives.
+TEST(Mlt, SeedsInPlaceAreCountedByReason) {
+  RenderSettings s = mltSettings(4);
+  s.width = 32;
+  s.height = 24;
+  RenderStats stats;
+  renderImage(loadScene(test::sourceDir() + "/tests/data/directional.xml"), s, &stats);
+  const ChainStats& e = chainStatsOf(stats);
+  uint64_t byReason = 0;
+  for (uint64_t n : e.inPlace) byReason += n;
+  EXPECT_EQ(byReason, mltStatsOf(stats).inPlaceSeeds);
+  EXPECT_GT(e.inPlace[kInPlaceDirectionalLight], 50u);
+}
+
 }  // namespace
 }  // namespace erpt

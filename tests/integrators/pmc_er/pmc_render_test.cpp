@@ -107,5 +107,21 @@ TEST(Pmc, SameImageForAnyThreadCount) {
     }
 }
 
+// Seeds no member can hold are deposited in place and counted by reason: under a directional
+// light (tests/data/directional.xml) many are, for that reason, and the reasons add up to the
+// total the summary gives.
+TEST(Pmc, SeedsInPlaceAreCountedByReason) {
+  RenderSettings s = pmcSettings(4, PmcFlow::EqualDeposition, PmcAdapt::Region, 1000);
+  s.width = 32;
+  s.height = 24;
+  RenderStats stats;
+  renderImage(loadScene(test::sourceDir() + "/tests/data/directional.xml"), s, &stats);
+  const ChainStats& e = chainStatsOf(stats);
+  uint64_t byReason = 0;
+  for (uint64_t n : e.inPlace) byReason += n;
+  EXPECT_EQ(byReason, pmcStatsOf(stats).inPlaceSeeds);
+  EXPECT_GT(e.inPlace[kInPlaceDirectionalLight], 200u);
+}
+
 }  // namespace
 }  // namespace erpt
