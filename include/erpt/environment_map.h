@@ -8,10 +8,12 @@
 // between pixel centres (u repeats, v clamps), times `scale`.
 //
 // Sampling picks a pixel (marginal over rows, then conditional over the row's pixels) with
-// probability proportional to its solid angle times its weight, the largest luminance in its
-// 3x3 neighbourhood (which bounds the bilinear radiance inside the pixel, so radiance / pdf
-// stays bounded around a small bright sun), then a direction uniformly in the pixel's solid
-// angle. The solid-angle pdf is thus constant over each pixel; pdf() returns it for any
+// probability P_i proportional to its luminance times sin(theta) at its centre, then moves
+// the pixel's centre by a tent-distributed offset of up to one pixel in u and in v (u wraps,
+// v reflects at the poles). The density of the sampled point in the pixel grid is then the
+// bilinear interpolant of the P_i, the same interpolation as the radiance's, so radiance / pdf
+// is about constant over the map, even across a sun a few pixels wide; in solid angle it is
+// that interpolant over 2 pi^2 sin(theta) per unit of uv. pdf() returns it for any
 // direction, and sample() returns pdf() of the direction it made.
 #pragma once
 
@@ -31,7 +33,7 @@ class EnvironmentMap {
 
   Color eval(Vec3 direction) const;  // radiance arriving from world direction `direction`
   // A unit world direction for (u1, u2) in [0, 1)^2 and its solid-angle pdf (false: pdf 0,
-  // only where rounding puts the direction across a pixel edge into a pixel of weight 0);
+  // only at a pole or at the very end of a pixel's tent);
   // with `radiance`, also eval() of the direction.
   bool sample(float u1, float u2, Vec3& direction, float& pdf, Color* radiance = nullptr) const;
   float pdf(Vec3 direction) const;
@@ -49,18 +51,29 @@ class EnvironmentMap {
   Vec3 uvToDirection(float u, float v) const;
 
  private:
+  // The four pixels around a point of the map and their bilinear weights.
+  struct Bilinear {
+    int x0, x1, y0, y1;
+    float tx, ty;
+    template <class T>
+    T of(const T* values, int width) const {
+      auto at = [&](int px, int py) { return values[size_t(py) * size_t(width) + size_t(px)]; };
+      return (at(x0, y0) * (1 - tx) + at(x1, y0) * tx) * (1 - ty) + (at(x0, y1) * (1 - tx) + at(x1, y1) * tx) * ty;
+    }
+  };
+  void directionToUv(Vec3 direction, float& u, float& v, float& sinTheta) const;
+  Bilinear bilinearAt(float u, float v) const;
   Color evalAtUv(float u, float v) const;
-  float pdfAtUv(float u, float v) const;
+  float pdfAt(const Bilinear& b, float sinTheta) const;
 
   int width_, height_;
   std::vector<Color> pixels_;    // scaled radiance, row-major, row 0 = +y
-  std::vector<float> rowCos_;    // cos(theta) at the row boundaries: height + 1 entries
   std::vector<float> rowCdf_;    // height + 1 entries
   std::vector<float> columnCdf_;  // per row: width + 1 entries
   // Guide tables of the CDFs (buckets + 1 entries each; environment_map.cpp's pickInterval).
   size_t rowBuckets_ = 1, columnBuckets_ = 1;
   std::vector<uint32_t> rowGuide_, columnGuide_;
-  std::vector<float> density_;   // per pixel: the solid-angle pdf of directions in it
+  std::vector<float> weight_;    // per pixel: P_i W H / (2 pi^2), whose bilinear interpolant over sin(theta) is the pdf
   Color mean_;
   Vec3 toWorld_[3], toLocal_[3];  // rotation rows (to_world's 3x3, orthonormalised)
 };

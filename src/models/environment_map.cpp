@@ -69,26 +69,11 @@ EnvironmentMap::EnvironmentMap(const RgbImage& image, float scale, const Transfo
     pixels_[i] = c * scale;
   }
 
-  // A pixel's sampling weight: the largest luminance in its 3x3 neighbourhood, which bounds
-  // the bilinear radiance anywhere inside it (so radiance / pdf stays bounded next to a small
-  // bright sun). Rows are weighted by their exact solid angle.
-  auto lum = [&](int c, int r) {
-    c = (c % width_ + width_) % width_;
-    r = std::clamp(r, 0, height_ - 1);
-    return double(luminance(pixels_[size_t(r) * width_ + c]));
-  };
-  std::vector<double> weight(pixels_.size());
-  for (int r = 0; r < height_; ++r)
-    for (int c = 0; c < width_; ++c) {
-      double w = 0;
-      for (int dr = -1; dr <= 1; ++dr)
-        for (int dc = -1; dc <= 1; ++dc) w = std::max(w, lum(c + dc, r + dr));
-      weight[size_t(r) * width_ + c] = w;
-    }
-  rowCos_.resize(size_t(height_) + 1);
-  for (int r = 0; r <= height_; ++r) rowCos_[size_t(r)] = float(std::cos(kPi * double(r) / height_));
-  rowCos_[0] = 1.0f;
-  rowCos_[size_t(height_)] = -1.0f;
+  // Pixel i is picked with probability P_i proportional to its luminance times sin(theta) at
+  // its centre, then moved by a tent offset of up to one pixel in each axis (header). The
+  // density of directions is then the bilinear interpolant of the P_i over 2 pi^2 sin(theta),
+  // which follows the bilinear radiance: radiance / pdf stays about constant even across a
+  // small bright sun.
   rowCdf_.assign(size_t(height_) + 1, 0.0f);
   columnCdf_.assign(size_t(height_) * (size_t(width_) + 1), 0.0f);
   std::vector<double> rowWeight(size_t(height_), 0.0);
@@ -96,20 +81,21 @@ EnvironmentMap::EnvironmentMap(const RgbImage& image, float scale, const Transfo
   for (int r = 0; r < height_; ++r) {
     const double pixelSolidAngle =
         2 * kPi / width_ * (std::cos(kPi * double(r) / height_) - std::cos(kPi * double(r + 1) / height_));
+    const double sinTheta = std::sin(kPi * (double(r) + 0.5) / height_);
     float* cdf = &columnCdf_[size_t(r) * (width_ + 1)];
     double rowSum = 0;
     for (int c = 0; c < width_; ++c) {
-      rowSum += weight[size_t(r) * width_ + c];
       const Color p = pixels_[size_t(r) * width_ + c];
+      rowSum += double(luminance(p));
       meanR += p.x * pixelSolidAngle, meanG += p.y * pixelSolidAngle, meanB += p.z * pixelSolidAngle;
     }
     double running = 0;
     for (int c = 0; c < width_; ++c) {
-      running += weight[size_t(r) * width_ + c];
+      running += double(luminance(pixels_[size_t(r) * width_ + c]));
       cdf[c + 1] = rowSum > 0 ? float(running / rowSum) : float(c + 1) / float(width_);
     }
     cdf[width_] = 1.0f;
-    rowWeight[size_t(r)] = rowSum * pixelSolidAngle;
+    rowWeight[size_t(r)] = rowSum * sinTheta;
     total += rowWeight[size_t(r)];
   }
   if (!(total > 0)) throw std::invalid_argument("the environment image is black: it emits no light");
@@ -128,17 +114,32 @@ EnvironmentMap::EnvironmentMap(const RgbImage& image, float scale, const Transfo
   for (size_t r = 0; r < size_t(height_); ++r)
     buildGuide(&columnCdf_[r * (size_t(width_) + 1)], size_t(width_), columnBuckets_,
                &columnGuide_[r * (columnBuckets_ + 1)]);
-  // The pdf is constant over each pixel's solid angle: its weight / the weighted total.
-  density_.resize(pixels_.size());
-  for (size_t i = 0; i < density_.size(); ++i) density_[i] = float(weight[i] / total);
+  // P_i in the units of the solid-angle pdf times sin(theta): a density of 1 per unit square
+  // of the pixel grid is W H per unit of uv, and d omega = 2 pi^2 sin(theta) du dv.
+  const double perPixel = double(width_) * double(height_) / (2 * kPi * kPi);
+  weight_.resize(pixels_.size());
+  for (int r = 0; r < height_; ++r) {
+    const double sinTheta = std::sin(kPi * (double(r) + 0.5) / height_);
+    for (int c = 0; c < width_; ++c) {
+      const size_t i = size_t(r) * width_ + c;
+      weight_[i] = float(double(luminance(pixels_[i])) * sinTheta / total * perPixel);
+    }
+  }
 }
 
 void EnvironmentMap::directionToUv(Vec3 direction, float& u, float& v) const {
+  float sinTheta;
+  directionToUv(direction, u, v, sinTheta);
+}
+
+void EnvironmentMap::directionToUv(Vec3 direction, float& u, float& v, float& sinTheta) const {
   const Vec3 d = normalize(rowTimes(toLocal_, direction));
   u = std::atan2(d.x, -d.z) * (0.5f * kInvPi);
   u -= std::floor(u);
   if (u >= 1.0f) u = 0.0f;
-  v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) * kInvPi;
+  const float y = std::clamp(d.y, -1.0f, 1.0f);
+  v = std::acos(y) * kInvPi;
+  sinTheta = std::sqrt(std::max(0.0f, 1 - y * y));
 }
 
 Vec3 EnvironmentMap::uvToDirection(float u, float v) const {
@@ -154,34 +155,53 @@ Color EnvironmentMap::eval(Vec3 direction) const {
 }
 
 Color EnvironmentMap::evalAndPdf(Vec3 direction, float& pdfOut) const {
-  float u, v;
-  directionToUv(direction, u, v);
-  pdfOut = pdfAtUv(u, v);
-  return evalAtUv(u, v);
+  float u, v, sinTheta;
+  directionToUv(direction, u, v, sinTheta);
+  const Bilinear b = bilinearAt(u, v);
+  pdfOut = pdfAt(b, sinTheta);
+  return b.of(pixels_.data(), width_);
 }
 
-Color EnvironmentMap::evalAtUv(float u, float v) const {
-  // Bilinear between pixel centres: columns wrap around, rows clamp at the poles.
+EnvironmentMap::Bilinear EnvironmentMap::bilinearAt(float u, float v) const {
+  // Between pixel centres: columns wrap around, rows clamp at the poles.
   const float x = u * float(width_) - 0.5f, y = v * float(height_) - 0.5f;
   const float fx = std::floor(x), fy = std::floor(y);
-  const float tx = x - fx, ty = y - fy;
+  Bilinear b;
+  b.tx = x - fx, b.ty = y - fy;
   // u in [0, 1) puts fx in [-1, width - 1]: one wrap at each edge (no integer division).
-  const int x0 = int(fx) < 0 ? width_ - 1 : int(fx), x1 = x0 + 1 == width_ ? 0 : x0 + 1;
-  const int y0 = std::clamp(int(fy), 0, height_ - 1), y1 = std::clamp(int(fy) + 1, 0, height_ - 1);
-  auto at = [&](int px, int py) { return pixels_[size_t(py) * width_ + px]; };
-  return (at(x0, y0) * (1 - tx) + at(x1, y0) * tx) * (1 - ty) + (at(x0, y1) * (1 - tx) + at(x1, y1) * tx) * ty;
+  b.x0 = int(fx) < 0 ? width_ - 1 : int(fx), b.x1 = b.x0 + 1 == width_ ? 0 : b.x0 + 1;
+  b.y0 = std::clamp(int(fy), 0, height_ - 1), b.y1 = std::clamp(int(fy) + 1, 0, height_ - 1);
+  return b;
 }
+
+Color EnvironmentMap::evalAtUv(float u, float v) const { return bilinearAt(u, v).of(pixels_.data(), width_); }
+
+float EnvironmentMap::pdfAt(const Bilinear& b, float sinTheta) const {
+  // At the poles (sin theta = 0) the density in solid angle is unbounded: sampling never
+  // needs it there (the poles are a set of measure zero), so it is 0.
+  return sinTheta > 0 ? b.of(weight_.data(), width_) / sinTheta : 0.0f;
+}
+
+namespace {
+// A tent-distributed offset in (-1, 1) from u in [0, 1): density 1 - |t|.
+float tentOffset(float u) { return u < 0.5f ? std::sqrt(2 * u) - 1 : 1 - std::sqrt(2 - 2 * u); }
+}  // namespace
 
 bool EnvironmentMap::sample(float u1, float u2, Vec3& direction, float& pdfOut, Color* radiance) const {
   float withinRow, withinColumn;
   const size_t r = pickInterval(rowCdf_.data(), size_t(height_), rowGuide_.data(), rowBuckets_, u2, withinRow);
   const size_t c = pickInterval(&columnCdf_[r * (size_t(width_) + 1)], size_t(width_),
                                 &columnGuide_[r * (columnBuckets_ + 1)], columnBuckets_, u1, withinColumn);
-  // Uniform in solid angle within the pixel: phi uniform, cos(theta) uniform between its rows.
-  const float phi = 2 * kPi * (float(c) + withinColumn) / float(width_);
-  const float cosTheta = rowCos_[r] + (rowCos_[r + 1] - rowCos_[r]) * withinRow;
-  const float sinTheta = std::sqrt(std::max(0.0f, 1 - cosTheta * cosTheta));
-  direction = rowTimes(toWorld_, Vec3(sinTheta * std::sin(phi), cosTheta, -sinTheta * std::cos(phi)));
+  // The pixel centre moved by a tent offset in each axis (the positions within the picked
+  // intervals are uniform and independent of the pick). Columns wrap; rows reflect at the
+  // poles, which makes the density there the bilinear interpolant with rows clamped, as
+  // pdf() computes it.
+  float x = float(c) + 0.5f + tentOffset(withinColumn), y = float(r) + 0.5f + tentOffset(withinRow);
+  if (x < 0) x += float(width_);
+  if (x >= float(width_)) x -= float(width_);
+  if (y < 0) y = -y;
+  if (y > float(height_)) y = 2 * float(height_) - y;
+  direction = uvToDirection(std::min(x / float(width_), 0x1.fffffep-1f), std::min(y / float(height_), 1.0f));
   // From the direction, so that sample() and pdf() agree to the bit.
   if (radiance) {
     *radiance = evalAndPdf(direction, pdfOut);
@@ -192,14 +212,9 @@ bool EnvironmentMap::sample(float u1, float u2, Vec3& direction, float& pdfOut, 
 }
 
 float EnvironmentMap::pdf(Vec3 direction) const {
-  float u, v;
-  directionToUv(direction, u, v);
-  return pdfAtUv(u, v);
-}
-
-float EnvironmentMap::pdfAtUv(float u, float v) const {
-  const int c = std::min(width_ - 1, int(u * float(width_))), r = std::min(height_ - 1, int(v * float(height_)));
-  return density_[size_t(r) * width_ + c];
+  float u, v, sinTheta;
+  directionToUv(direction, u, v, sinTheta);
+  return pdfAt(bilinearAt(u, v), sinTheta);
 }
 
 }  // namespace erpt

@@ -123,8 +123,10 @@ TEST(EnvironmentMap, OneLookupFormsEqualEvalAndPdf) {
   EXPECT_GT(checked, 19000u);
 }
 
-// Per pixel of the map: the counts of sampled directions against pdf x the pixel's solid
-// angle (exact, since the pdf is constant over a pixel), chi-square.
+// Per pixel of the map: the counts of sampled directions against the pdf integrated over the
+// pixel, chi-square. The integral: pdf x sin(theta) is bilinear in uv between pixel centres,
+// so the midpoint rule over the pixel's quarters (whose edges are the centre lines) is exact,
+// with d omega = 2 pi^2 sin(theta) du dv.
 void expectSampledPixelsFollowThePdf(const EnvironmentMap& map) {
   const int w = map.width(), h = map.height();
   const uint64_t n = 2000000;
@@ -146,9 +148,14 @@ void expectSampledPixelsFollowThePdf(const EnvironmentMap& map) {
   double total = 0;
   for (int r = 0; r < h; ++r)
     for (int c = 0; c < w; ++c) {
-      const double solidAngle = 2 * kPi / w * (std::cos(kPi * r / h) - std::cos(kPi * (r + 1) / h));
-      const Vec3 centre = map.uvToDirection((c + 0.5f) / w, (r + 0.5f) / h);
-      expected[size_t(r) * w + c] = double(map.pdf(centre)) * solidAngle * double(n);
+      double integral = 0;
+      for (int qv = 0; qv < 2; ++qv)
+        for (int qu = 0; qu < 2; ++qu) {
+          const double u = (c + 0.25 + 0.5 * qu) / w, v = (r + 0.25 + 0.5 * qv) / h;
+          const Vec3 d = map.uvToDirection(float(u), float(v));
+          integral += double(map.pdf(d)) * 2 * kPi * kPi * std::sin(kPi * v) * (0.25 / (double(w) * h));
+        }
+      expected[size_t(r) * w + c] = integral * double(n);
       total += expected[size_t(r) * w + c];
     }
   EXPECT_LE(failed, n / 100000);
