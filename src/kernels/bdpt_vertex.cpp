@@ -3,12 +3,12 @@
 namespace erpt {
 
 VertexBsdf vertexBsdf(const Scene& scene, const BdptVertex& v) {
-  VertexBsdf b;
-  if (v.material < 0 || isLightVertex(v) || v.kind == kEyeVertex) return b;
-  b.material = &scene.materials[size_t(v.material)];
-  b.frame = b.material->anisotropic() ? Frame::turned(v.ns, v.tangentAngle) : Frame(v.ns);
-  b.colors = scene.surfaceColors(v.material, v.u, v.v);
-  return b;
+  if (v.material < 0 || isLightVertex(v) || v.kind == kEyeVertex) return VertexBsdf{};
+  // Built from prvalues, so the colours (some 400 bytes with a blend's parts) are written once
+  // where the caller wants them; assigning them to a member was a copy per vertex.
+  const Material& m = scene.materials[size_t(v.material)];
+  return VertexBsdf{&m, m.anisotropic() ? Frame::turned(v.ns, v.tangentAngle) : Frame(v.ns),
+                    scene.surfaceColors(v.material, v.u, v.v)};
 }
 
 Color lightVertexEmission(const Scene& scene, const BdptVertex& v, Vec3 w) {

@@ -4,6 +4,8 @@
 // light vertex joined to the lens, splatted where it lands on the film (light tracing).
 #include <algorithm>
 #include <limits>
+#include <new>
+#include <type_traits>
 
 #include "core/rng.h"
 #include "kernels/bdpt_mis.h"
@@ -12,6 +14,8 @@
 #include "tracer/tracer.h"
 
 namespace erpt {
+
+static_assert(std::is_trivially_destructible_v<VertexBsdf>, "stageBdptConnect constructs VertexBsdf over old ones");
 
 namespace {
 
@@ -148,8 +152,10 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
     // Grown, never shrunk: a resize to each sample's lengths constructed the rows again.
     if (lightBsdf.size() < light.size()) lightBsdf.resize(light.size());
     if (cameraBsdf.size() < cam.size()) cameraBsdf.resize(cam.size());
-    for (size_t j = 0; j < light.size(); ++j) lightBsdf[j] = vertexBsdf(scene, light[j]);
-    for (size_t j = 0; j < cam.size(); ++j) cameraBsdf[j] = vertexBsdf(scene, cam[j]);
+    // Constructed in place (VertexBsdf is trivially destructible): an assignment copied each
+    // vertex's BSDF, colours and all, once more.
+    for (size_t j = 0; j < light.size(); ++j) new (&lightBsdf[j]) VertexBsdf(vertexBsdf(scene, light[j]));
+    for (size_t j = 0; j < cam.size(); ++j) new (&cameraBsdf[j]) VertexBsdf(vertexBsdf(scene, cam[j]));
     const int nL = int(light.size()), nC = int(cam.size());
     const uint32_t sample = uint32_t(i);
 
