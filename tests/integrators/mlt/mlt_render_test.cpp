@@ -16,6 +16,7 @@
 #include "support/block_bias.h"
 #include "support/cornell_references.h"
 #include "support/image_stats.h"
+#include "support/in_place_reasons.h"
 #include "support/test_support.h"
 
 namespace erpt {
@@ -151,16 +152,7 @@ TEST(StatisticalMlt, PlasticBoxMatchesPathTracerBlockByBlock) {
 // directional light (tests/data/directional.xml) many are, for that reason, and the reasons
 // add up to the total the summary gives.
 TEST(Mlt, SeedsInPlaceAreCountedByReason) {
-  RenderSettings s = mltSettings(4);
-  s.width = 32;
-  s.height = 24;
-  RenderStats stats;
-  renderImage(loadScene(test::sourceDir() + "/tests/data/directional.xml"), s, &stats);
-  const ChainStats& e = chainStatsOf(stats);
-  uint64_t byReason = 0;
-  for (uint64_t n : e.inPlace) byReason += n;
-  EXPECT_EQ(byReason, mltStatsOf(stats).inPlaceSeeds);
-  EXPECT_GT(e.inPlace[kInPlaceDirectionalLight], 50u);
+  test::expectInPlaceReasonsAddUp(mltSettings(4), [](const RenderStats& st) { return mltStatsOf(st).inPlaceSeeds; }, 50u);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "support/block_bias.h"
 #include "support/cornell_references.h"
 #include "support/image_stats.h"
+#include "support/in_place_reasons.h"
 #include "support/test_support.h"
 
 namespace erpt {
@@ -111,16 +112,7 @@ TEST(Pmc, SameImageForAnyThreadCount) {
 // light (tests/data/directional.xml) many are, for that reason, and the reasons add up to the
 // total the summary gives.
 TEST(Pmc, SeedsInPlaceAreCountedByReason) {
-  RenderSettings s = pmcSettings(4, PmcFlow::EqualDeposition, PmcAdapt::Region, 1000);
-  s.width = 32;
-  s.height = 24;
-  RenderStats stats;
-  renderImage(loadScene(test::sourceDir() + "/tests/data/directional.xml"), s, &stats);
-  const ChainStats& e = chainStatsOf(stats);
-  uint64_t byReason = 0;
-  for (uint64_t n : e.inPlace) byReason += n;
-  EXPECT_EQ(byReason, pmcStatsOf(stats).inPlaceSeeds);
-  EXPECT_GT(e.inPlace[kInPlaceDirectionalLight], 200u);
+  test::expectInPlaceReasonsAddUp(pmcSettings(4, PmcFlow::EqualDeposition, PmcAdapt::Region, 1000), [](const RenderStats& st) { return pmcStatsOf(st).inPlaceSeeds; }, 200u);
 }
 
 }  // namespace
