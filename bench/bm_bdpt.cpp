@@ -25,7 +25,7 @@ struct BdptFixture {
   Camera camera{scene.camera, kSize, kSize};
   PixelFilter filter{FilterKind::Box};  // BDPT's camera samples are uniform in the pixel
   LightSampler lights{scene};
-  StageContext stage{scene, camera, filter, lights, 1, kSize, 1, -1};
+  StageContext stage{scene, camera, filter, lights, 1, kSize, kSize, 1, -1};
   BdptContext ctx{stage, kSize};
   std::vector<std::unique_ptr<BdptWavefront>> chunks;
 

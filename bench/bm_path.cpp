@@ -23,7 +23,7 @@ struct PathFixture {
   Camera camera{scene.camera, kSize, kSize};
   PixelFilter filter{FilterKind::Box};
   LightSampler lights{scene};
-  StageContext ctx{scene, camera, filter, lights, 1, kSize, 1, -1};
+  StageContext ctx{scene, camera, filter, lights, 1, kSize, kSize, 1, -1};
   PathQueue paths;
   PathSlotQueue slots, compactedSlots;
   RayQueue cameraRays, bounceRays, shadowRays, compactedRays;
@@ -46,7 +46,7 @@ struct PathFixture {
   }
   void resetPaths() {
     for (size_t i = 0; i < kPaths; ++i) {
-      startPath(paths, uint32_t(i), ctx.seed, uint32_t(i), 0);
+      startPath(paths, uint32_t(i), sampleKey(ctx.seed, uint32_t(i), 0), uint32_t(i), 0);
       slots.path[i] = uint32_t(i);
     }
   }

@@ -37,7 +37,8 @@ inline uint32_t uniformUint(uint64_t key, uint32_t dim) { return uint32_t(unifor
 // Uniform double in [0, 1), 53 bits, whose top 24 bits are uniformFloat's: for inverting
 // discrete CDFs and for coins against small probabilities. Every float in [2^-29, 1) is a
 // multiple of 2^-53, so P(a <= u < b) = b - a exactly for such floats a < b.
-inline double uniformDouble(uint64_t key, uint32_t dim) { return double(uniformBits(key, dim) >> 11) * 0x1p-53; }
+inline double doubleFromBits(uint64_t bits) { return double(bits >> 11) * 0x1p-53; }
+inline double uniformDouble(uint64_t key, uint32_t dim) { return doubleFromBits(uniformBits(key, dim)); }
 
 // Uniform integer in [0, n), n >= 1, with every value exactly equally likely: Lemire's
 // multiply-shift on 64 bits, rejecting the low products that would favour some values (a

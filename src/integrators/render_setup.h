@@ -39,7 +39,7 @@ struct RenderSetup {
         sampling(film == FilmMode::Fis ? s.filter : FilterKind::Box),
         filmMode(film),
         lights(scene),
-        ctx{scene, camera, sampling, lights, s.seed, s.width, s.spp, s.maxDepth},
+        ctx{scene, camera, sampling, lights, s.seed, s.width, s.height, s.spp, s.maxDepth},
         film(s.width, s.height),
         order(tiledPixelOrder(s.width, s.height)),
         totalSamples(order.size() * size_t(s.spp)) {}

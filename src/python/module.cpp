@@ -29,6 +29,7 @@
 #include "erpt/erpt_settings.h"
 #include "erpt/image_io.h"
 #include "erpt/image_metrics.h"
+#include "erpt/pssmlt_settings.h"
 #include "erpt/integrators.h"
 #include "erpt/render.h"
 #include "erpt/render_request.h"
@@ -233,6 +234,17 @@ py::dict statsOf(const RenderSettings& s, const RenderStats& stats) {
     for (int r = 1; r < kRejectReasonCount; ++r) rejected[rejectReasonName(RejectReason(r))] = e.rejected[r];
     d["in_place"] = inPlace;
     d["rejected"] = rejected;
+  }
+  if (s.integrator == "pssmlt") {
+    const PssmltStats& p = pssmltStatsOf(const_cast<RenderStats&>(stats));
+    d["chains"] = p.chains;
+    d["mutations"] = p.smallSteps + p.largeSteps;
+    py::dict proposed, accepted;
+    proposed["small step"] = p.smallSteps, accepted["small step"] = p.smallAccepted;
+    proposed["large step"] = p.largeSteps, accepted["large step"] = p.largeAccepted;
+    d["proposed"] = proposed;
+    d["accepted"] = accepted;
+    d["b"] = p.b;
   }
   return d;
 }

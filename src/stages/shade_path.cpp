@@ -98,8 +98,8 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     const Vec3 wi = sp.shading.toLocal(-dir);
 
     LightConnection lc;
-    if (connectToLight(ctx.lights, sp, m, colors, wi, uniformDouble(key, bounceDim(depth, kLightPick)),
-                       uniformFloat(key, bounceDim(depth, kLight1)), uniformFloat(key, bounceDim(depth, kLight2)), lc)) {
+    if (connectToLight(ctx.lights, sp, m, colors, wi, drawDouble(ctx, key, bounceDim(depth, kLightPick)),
+                       drawFloat(ctx, key, bounceDim(depth, kLight1)), drawFloat(ctx, key, bounceDim(depth, kLight2)), lc)) {
       slots.neeSet(k, throughput * lc.contribution);
       setRay(shadowRays, k, lc.origin, lc.direction, 0.0f, lc.tfar);
       if (recording) {
@@ -114,8 +114,8 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     }
 
     BsdfSample bs;
-    if (!bsdfSample(m, colors, wi, uniformFloat(key, bounceDim(depth, kLobe)), uniformFloat(key, bounceDim(depth, kBsdf1)),
-                    uniformFloat(key, bounceDim(depth, kBsdf2)), bs) ||
+    if (!bsdfSample(m, colors, wi, drawFloat(ctx, key, bounceDim(depth, kLobe)), drawFloat(ctx, key, bounceDim(depth, kBsdf1)),
+                    drawFloat(ctx, key, bounceDim(depth, kBsdf2)), bs) ||
         isBlack(bs.weight))
       continue;
     Color next = throughput * bs.weight;
@@ -127,7 +127,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     if (int(depth) >= ctx.rrDepth) {
       // Russian roulette: survive with probability q, reweight by 1/q (unbiased).
       const float q = russianRouletteSurvival(next, paths.etaSquared[id]);
-      if (!(uniformDouble(key, bounceDim(depth, kRoulette)) < q)) continue;
+      if (!(drawDouble(ctx, key, bounceDim(depth, kRoulette)) < q)) continue;
       next = next / q;
       paths.pLength[id] *= q;
     }

@@ -56,7 +56,7 @@ bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, co
   if (ctx.maxDepth >= 0 && depth >= uint32_t(ctx.maxDepth)) return false;
   const uint64_t key = paths.key[id];
   uint32_t light;
-  if (!ctx.lights.pickTriangle(uniformDouble(key, bounceDim(depth, kLightPick)), light)) return false;
+  if (!ctx.lights.pickTriangle(drawDouble(ctx, key, bounceDim(depth, kLightPick)), light)) return false;
 
   const size_t j = count_++;
   slot_[j] = int32_t(k);
@@ -68,17 +68,22 @@ bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, co
   in_[kReflectanceG][j] = m.reflectance.value.y;
   in_[kReflectanceB][j] = m.reflectance.value.z;
   in_[kTwoSided][j] = m.twoSided ? 1.0f : 0.0f;
-  // The light point's and the bounce's numbers are drawn in lanes by shade().
-  for (int d = 0; d < kLaneDraws; ++d)
-    drawOffset_[d][j] = dimensionOffset(key, bounceDim(depth, kLaneDrawDims[d]));
-  roulette_[j] = int(depth) >= ctx.rrDepth ? uniformDouble(key, bounceDim(depth, kRoulette)) : 0.0;
+  // The light point's and the bounce's numbers are drawn in lanes by shade(), or here when
+  // they are a chain's primary samples.
+  replayed_ = ctx.replay != nullptr;
+  for (int d = 0; d < kLaneDraws; ++d) {
+    if (replayed_) in_[kULight1 + d][j] = drawFloat(ctx, key, bounceDim(depth, kLaneDrawDims[d]));
+    else drawOffset_[d][j] = dimensionOffset(key, bounceDim(depth, kLaneDrawDims[d]));
+  }
+  roulette_[j] = int(depth) >= ctx.rrDepth ? drawDouble(ctx, key, bounceDim(depth, kRoulette)) : 0.0;
   return true;
 }
 
 void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSlotQueue& slots, RayQueue& rays,
                                const HitQueue& hits, RayQueue& shadowRays, VertexHistory history) {
   if (count_ == 0) return;
-  for (int d = 0; d < kLaneDraws; ++d) uniformFloatsAt(drawOffset_[d], count_, in_[kULight1 + d]);
+  if (!replayed_)
+    for (int d = 0; d < kLaneDraws; ++d) uniformFloatsAt(drawOffset_[d], count_, in_[kULight1 + d]);
   // Rows past count_, up to a whole batch, gather row 0's queue entries: their lanes are
   // computed and never stored (their other inputs are stale or unset).
   for (size_t j = count_; j % kLanes != 0; ++j)

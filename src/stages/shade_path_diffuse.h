@@ -61,7 +61,8 @@ class DiffuseShadePacket {
   static constexpr int kLaneDraws = 4;
   static constexpr BounceDim kLaneDrawDims[kLaneDraws] = {kLight1, kLight2, kBsdf1, kBsdf2};
   uint64_t drawOffset_[kLaneDraws][kCapacity] = {};
-  double roulette_[kCapacity] = {};  // the Russian-roulette coin, compared in double as the scalar body does
+  double roulette_[kCapacity] = {};
+  bool replayed_ = false;  // the lane draws were taken from a chain's primary samples by add()  // the Russian-roulette coin, compared in double as the scalar body does
   size_t count_ = 0;
 };
 

@@ -9,6 +9,9 @@
 #include "core/queues.h"
 #include "tracer/ray_queues.h"
 #include "core/seeds.h"
+#include "kernels/primary_samples.h"
+#include "kernels/sample_dimensions.h"
+#include "core/rng.h"
 
 namespace erpt {
 
@@ -20,33 +23,45 @@ struct StageContext {
   const LightSampler& lights;
   uint64_t seed;
   int width;
+  int height;
   int spp;
   int maxDepth;
   int rrDepth = 5;  // Russian roulette from this path depth on (Mitsuba's default)
   // stageShadePath shades plain diffuse hits in vector lanes (shade_path_diffuse.h); false:
   // every hit through the scalar body, so that tests and bm_path can compare the two.
   bool vectorShading = true;
+  // Replaying chains' primary samples (pssmlt): the path stages draw every number from it,
+  // and a path's stream key is its chain's index. nullptr: the counter-based streams.
+  PrimarySamples* replay = nullptr;
 };
 
-// Random-number dimensions of one camera sample (stream key = (pixel, sample)): two for the
-// film position, then eight per bounce, so every number is addressed by (depth, use).
-constexpr uint32_t kDimFilmX = 0, kDimFilmY = 1;
-// The thin lens's disk sample: far from the per-bounce dimensions (a counter-based stream has
-// them all), so pinhole renders keep their numbers.
-constexpr uint32_t kDimLensX = 0x7fff0000u, kDimLensY = 0x7fff0001u;
-enum BounceDim : uint32_t { kLightPick = 0, kLight1, kLight2, kLobe, kBsdf1, kBsdf2, kRoulette, kBounceDims = 8 };
-inline uint32_t bounceDim(uint32_t depth, BounceDim use) { return 2 + kBounceDims * (depth - 1) + use; }
+// Dimension `dim` of stream `key`: a counter-based random number, or a chain's primary sample.
+inline uint64_t drawBits(const StageContext& ctx, uint64_t key, uint32_t dim) {
+  return ctx.replay ? ctx.replay->bits(size_t(key), dim) : uniformBits(key, dim);
+}
+// uniformFloat and uniformDouble (core/rng.h) of drawBits.
+inline float drawFloat(const StageContext& ctx, uint64_t key, uint32_t dim) {
+  return floatFromBits(drawBits(ctx, key, dim));
+}
+inline double drawDouble(const StageContext& ctx, uint64_t key, uint32_t dim) {
+  return doubleFromBits(drawBits(ctx, key, dim));
+}
 
 uint64_t sampleKey(uint64_t seed, uint32_t pixel, uint32_t sample);
+// The stream a sample draws from: sampleKey of the render's seed, or, replaying primary
+// samples, `sample` itself: the index of the chain whose proposal it traces.
+inline uint64_t sampleStream(const StageContext& ctx, uint32_t pixel, uint32_t sample) {
+  return ctx.replay ? sample : sampleKey(ctx.seed, pixel, sample);
+}
 
 // Path `id` starts as sample `sample` of `pixel`: at the camera (depth 1), throughput 1, no
-// radiance, no roulette or IOR factors, no recorded vertex, and its stream key hashed once
-// (every bounce draws from it).
-void startPath(PathQueue& paths, uint32_t id, uint64_t seed, uint32_t pixel, uint32_t sample);
+// radiance, no roulette or IOR factors, no recorded vertex, drawing from stream `key` (every
+// bounce draws from it).
+void startPath(PathQueue& paths, uint32_t id, uint64_t key, uint32_t pixel, uint32_t sample);
 
 // Camera rays for the samples (pixel[i], sample[i]), i in range: film positions stratified
 // per pixel (Latin hypercube over the pixel's samples) and importance-sampled from the pixel
-// filter.
+// filter; replaying primary samples, uniform over the whole film (sample[i] is the chain).
 // filmX/filmY (optional) receive the film positions.
 void stageGenerateCameraRays(const StageContext& ctx, const uint32_t* pixel, const uint32_t* sample, RayQueue& rays,
                              IndexRange range, float* filmX = nullptr, float* filmY = nullptr);

@@ -175,6 +175,13 @@ const std::vector<Sampler>& samplers() {
          s.spp = 1;
          mltOf(s).bootstrapSpp = 4;
        }},
+      {"Pssmlt", 15,
+       [](RenderSettings& s) {
+         s.integrator = "pssmlt";
+         s.spp = 1;
+         chainOf(s).mutationsPerPixel = 64;
+         mltOf(s).bootstrapSpp = 4;
+       }},
       {"MltBdptSeeds", 15,
        [](RenderSettings& s) {
          chains(s, "mlt", SeedSampler::Bdpt);

@@ -66,6 +66,7 @@ def test_render_gives_an_image_and_statistics(scene):
     ("path", {"spp": 3}, ["--spp", "3"]),
     ("erpt", {"spp": 2, "mutations_per_pixel": 8, "lens_radius": 3.5}, ["--spp", "2", "--mutations-per-pixel", "8", "--lens-radius", "3.5"]),
     ("mlt", {"spp": 4, "bidir_mutation": 0.3}, ["--spp", "4", "--bidir-mutation", "0.3"]),
+    ("pssmlt", {"spp": 4, "small_step": 0.05}, ["--spp", "4", "--small-step", "0.05"]),
     ("bdpt", {"spp": 2, "filter": "tent"}, ["--spp", "2", "--filter", "tent"]),
 ])
 def test_render_is_bit_identical_to_the_cli(scene, tmp_path, integrator, options, flags):

@@ -82,7 +82,7 @@ TEST(StageGenerate, FilmPositionsAreStratifiedPerPixel) {
   Camera camera(scene.camera, w, h);
   PixelFilter box(FilterKind::Box);
   LightSampler lights(scene);
-  StageContext ctx{scene, camera, box, lights, 42, w, spp, -1};
+  StageContext ctx{scene, camera, box, lights, 42, w, h, spp, -1};
   const size_t n = size_t(w) * h * spp;
   std::vector<uint32_t> pixel(n), sample(n);
   for (size_t i = 0; i < n; ++i) {
@@ -127,7 +127,7 @@ TEST(StageGenerate, TheFirstSamplesOfEveryPixelAreUniformOverIt) {
   Camera camera(scene.camera, w, h);
   PixelFilter box(FilterKind::Box);
   LightSampler lights(scene);
-  StageContext ctx{scene, camera, box, lights, 42, w, spp, -1};
+  StageContext ctx{scene, camera, box, lights, 42, w, h, spp, -1};
   for (int first : {1, 4}) {
     SCOPED_TRACE("the first " + std::to_string(first) + " samples");
     const size_t n = size_t(w) * h * first;

@@ -31,7 +31,7 @@ Outcome shadeAtGlass(int depth, size_t n) {
   Camera camera(scene.camera, 4, 4);
   PixelFilter box(FilterKind::Box);
   LightSampler lights(scene);
-  StageContext ctx{scene, camera, box, lights, 7, 4, 1, -1};
+  StageContext ctx{scene, camera, box, lights, 7, 4, 4, 1, -1};
   PathQueue paths;
   PathSlotQueue slots;
   RayQueue rays, shadowRays;
@@ -42,7 +42,7 @@ Outcome shadeAtGlass(int depth, size_t n) {
   prepareRays(shadowRays, n);
   hits.resize(n);
   for (size_t k = 0; k < n; ++k) {
-    startPath(paths, uint32_t(k), ctx.seed, uint32_t(k % 16), uint32_t(k / 16));
+    startPath(paths, uint32_t(k), sampleKey(ctx.seed, uint32_t(k % 16), uint32_t(k / 16)), uint32_t(k % 16), uint32_t(k / 16));
     paths.depth[k] = uint32_t(depth);
     paths.prevSet(k, Vec3(0, 0, 3));
     slots.path[k] = uint32_t(k);

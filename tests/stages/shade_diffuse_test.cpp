@@ -87,7 +87,7 @@ Queues randomHits(const Tracer& tracer, uint64_t seed, size_t n) {
   for (size_t k = 0; k < n; ++k) {
     const uint64_t key = streamKey(11, k, 0);
     const Vec3 origin(3 * uniformFloat(key, 0) - 1.5f, 3 * uniformFloat(key, 1) - 1.5f, 3 * uniformFloat(key, 2) - 1.5f);
-    startPath(q.paths, uint32_t(k), seed, uint32_t(k % 97), uint32_t(k / 97));
+    startPath(q.paths, uint32_t(k), sampleKey(seed, uint32_t(k % 97), uint32_t(k / 97)), uint32_t(k % 97), uint32_t(k / 97));
     q.paths.depth[k] = 1 + uint32_t(k % 8);
     q.paths.throughputSet(k, Color(0.2f + uniformFloat(key, 3), 0.2f + uniformFloat(key, 4), 0.2f + uniformFloat(key, 5)));
     q.paths.prevPdf[k] = 0.3f;
@@ -112,7 +112,7 @@ TEST(ShadeDiffuse, VectorKernelMatchesTheScalarBodySlotBySlot) {
   const Camera camera(scene.camera, 4, 4);
   const PixelFilter box(FilterKind::Box);
   const LightSampler lights(scene);
-  StageContext ctx{scene, camera, box, lights, 5, 97, 1, -1};
+  StageContext ctx{scene, camera, box, lights, 5, 97, 4, 1, -1};
   ctx.rrDepth = 3;
   const size_t n = 6007;  // not a multiple of the packet or of any vector width
   Queues scalar = randomHits(tracer, ctx.seed, n);

@@ -351,6 +351,21 @@ RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& sta
   return image;
 }
 
+std::vector<OptionSpec> metropolisOptions() {
+  return {realOption("large-step-prob",
+                     "probability that a chain step is a large step: a fresh sample, independent of the chain's path",
+                     0, 1, [](auto& s) -> auto& { return mltOf(s).largeStepProbability; }),
+          integerOption("bootstrap",
+                        "seed-sampler samples per pixel of the bootstrap that estimates the image's luminance b "
+                        "and seeds the chains (0: as many as cost about what the chains do, at most 100,000 samples "
+                        "and at least 1 per pixel)",
+                        0, 65536, [](auto& s) -> auto& { return mltOf(s).bootstrapSpp; }),
+          integerOption("chains",
+                        "Markov chains, started by resampling the bootstrap's paths by luminance; each runs "
+                        "mutations-per-pixel x pixels / chains steps",
+                        1, 100000000, [](auto& s) -> auto& { return mltOf(s).chains; })};
+}
+
 IntegratorModule mltModule() {
   IntegratorModule m;
   m.name = "mlt";
@@ -358,20 +373,8 @@ IntegratorModule mltModule() {
   // No sample passes (no checkpoints), its own chain length and expected-value deposits, and
   // a bootstrap instead of ERPT's pilot.
   m.options = {mutationsPerPixelOption(), directSamplesOption(), seedsOption(), bidirectionalMutationOption(),
-               manifoldPerturbationOption(),
-               realOption("large-step-prob",
-                          "probability that a chain step is a large step, a fresh path-tracer sample through a "
-                          "uniform pixel",
-                          0, 1, [](auto& s) -> auto& { return mltOf(s).largeStepProbability; }),
-               integerOption("bootstrap",
-                             "seed-sampler samples per pixel of the bootstrap that estimates the image's luminance b "
-                             "and seeds the chains (0: as many as cost about what the chains do, at most 100,000 samples and "
-                             "at least 1 per pixel)",
-                             0, 65536, [](auto& s) -> auto& { return mltOf(s).bootstrapSpp; }),
-               integerOption("chains",
-                             "Markov chains, started by resampling the bootstrap's paths by luminance; each runs "
-                             "mutations-per-pixel x pixels / chains steps",
-                             1, 100000000, [](auto& s) -> auto& { return mltOf(s).chains; })};
+               manifoldPerturbationOption()};
+  addOptions(m.options, metropolisOptions());
   addOptions(m.options, perturbationOptions());
   m.options.push_back(chainMapsOption());
   m.sppOption = "mutations-per-pixel";  // Mitsuba's MLT takes its sampler's sample count as this

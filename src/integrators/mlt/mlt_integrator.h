@@ -12,5 +12,8 @@ namespace erpt {
 void validateMltSettings(const RenderSettings& settings);
 RgbImage renderMlt(const Scene& scene, const RenderSettings& settings, RenderStats& stats);
 IntegratorModule mltModule();
+// The Metropolis options mlt and pssmlt share (MltSettings): large-step probability,
+// bootstrap, chains.
+std::vector<OptionSpec> metropolisOptions();
 
 }  // namespace erpt

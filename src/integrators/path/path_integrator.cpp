@@ -107,15 +107,15 @@ struct SeedRecording {
 };
 
 // Starts samples first + j (j in r) in the free path ids freeIds[j], in slots firstSlot + j.
-void startPaths(PathWavefront& w, int cur, uint64_t seed, const PathSampleSet& samples, size_t first, size_t firstSlot,
-                IndexRange r) {
+void startPaths(PathWavefront& w, int cur, const StageContext& ctx, const PathSampleSet& samples, size_t first,
+                size_t firstSlot, IndexRange r) {
   PathQueue& paths = w.paths;
   for (size_t j = r.begin; j < r.end; ++j) {
     const uint32_t id = w.freeIds[j];
     const size_t slot = firstSlot + j;
     uint32_t pixel, sample;
     samples.at(first + j, pixel, sample);
-    startPath(paths, id, seed, pixel, sample);
+    startPath(paths, id, sampleStream(ctx, pixel, sample), pixel, sample);
     paths.runIndex[id] = uint32_t(first + j);
     w.slots[cur].path[slot] = id;
     w.startPixel[slot] = paths.pixel[id];
@@ -167,7 +167,7 @@ void traceSamples(const Tracer& tracer, const StageContext& ctx, const PathSampl
         bounceHistory.base = m;
       }
       run("generate", m, [&](IndexRange r) {
-        startPaths(w, cur, ctx.seed, samples, next, live, r);
+        startPaths(w, cur, ctx, samples, next, live, r);
         const IndexRange slotRange{live + r.begin, live + r.end};
         stageGenerateCameraRays(ctx, w.startPixel.data(), w.startSample.data(), w.rays[cur], slotRange, w.startX.data(),
                                 w.startY.data());
@@ -252,6 +252,25 @@ uint64_t traceSeedsInline(const Tracer& tracer, const StageContext& ctx, const P
   scratch.impl->radiance.resize(samples.count);
   traceSamples(tracer, ctx, samples, 0, samples.count, samples.count, scratch.impl->wavefront, StageRunner{false, times},
                scratch.impl->radiance, 0, &rec, rays);
+  return rays;
+}
+
+uint64_t traceReplayedSamples(const Tracer& tracer, const StageContext& ctx, const uint32_t* chains, size_t n,
+                              PathTracerScratch& scratch, StageTimes& times, float* filmX, float* filmY, Color* radiance) {
+  std::atomic<uint64_t> rays{0};
+  if (n == 0) return 0;
+  const PathSampleSet samples{n, [chains](size_t k, uint32_t& pixel, uint32_t& sample) {
+                                pixel = 0;  // unused: the film position is the chain's
+                                sample = chains[k];
+                              }};
+  BatchRadiance& out = scratch.impl->radiance;
+  out.resize(n);
+  traceSamples(tracer, ctx, samples, 0, n, std::min(n, kTaskQueue), scratch.impl->wavefront, StageRunner{false, times}, out,
+               0, nullptr, rays);
+  for (size_t k = 0; k < n; ++k) {
+    filmX[k] = out.x[k], filmY[k] = out.y[k];
+    radiance[k] = out.at(k);
+  }
   return rays;
 }
 

@@ -15,6 +15,7 @@ struct SeedStore;
 class StageTimes;
 class Film;
 class SplatFilm;
+class Tracer;
 
 // `settings` must be resolved (resolveSettings). `film`: how samples reach the image (Fis for
 // every path tracer inside another integrator; `--integrator path` passes its --film).
@@ -70,5 +71,11 @@ struct PathTracerScratch {
 // large steps inside a chain lane. Returns the rays traced.
 uint64_t traceSeedsInline(const Tracer& tracer, const StageContext& ctx, const PathSampleSet& samples, SeedStore& seeds,
                           PathTracerScratch& scratch, StageTimes& times);
+
+// Replaying primary samples (ctx.replay set): one path-tracer sample for each of the chains
+// chains[0..n), drawn from its proposal, on the calling thread; its film position and
+// radiance go to filmX[k], filmY[k], radiance[k]. Returns the rays traced.
+uint64_t traceReplayedSamples(const Tracer& tracer, const StageContext& ctx, const uint32_t* chains, size_t n,
+                              PathTracerScratch& scratch, StageTimes& times, float* filmX, float* filmY, Color* radiance);
 
 }  // namespace erpt

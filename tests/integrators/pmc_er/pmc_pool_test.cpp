@@ -18,7 +18,7 @@ TEST(PmcPool, EveryPositionOnceAndEachPixelStratified) {
   const int size = 24;
   const uint32_t spp = 8;
   test::ErptWorld w(test::sharedScenesDir() + "/cornell-box/scene.xml", size, 1, FilterKind::Box);
-  const StageContext ctx{w.scene, *w.camera, *w.filter, *w.lights, 5, size, int(spp), -1};
+  const StageContext ctx{w.scene, *w.camera, *w.filter, *w.lights, 5, size, size, int(spp), -1};
   const StratifiedPool pool{uint32_t(size * size), spp, 99};
   ASSERT_EQ(pool.size(), size_t(size * size) * spp);
   std::vector<uint32_t> pixels(pool.size()), samples(pool.size());

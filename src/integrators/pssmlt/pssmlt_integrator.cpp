@@ -1,0 +1,305 @@
+// `--integrator pssmlt`: primary-sample-space Metropolis light transport (Kelemen,
+// Szirmay-Kalos, Antal and Csonka 2002) over the wavefront path tracer, as Mitsuba 0.6's
+// `pssmlt` with its unidirectional sampler (docs/pssmlt.md).
+//
+//   1. Bootstrap (--bootstrap N samples per pixel; by default sized as MLT's): path-tracer
+//      samples of fresh primary vectors. Their mean luminance is b.
+//   2. Chains (--chains C): each starts from a bootstrap sample resampled in proportion to its
+//      luminance (systematic resampling; its vector is replayed once to become the chain's
+//      state), then takes L = M pixels / C steps (M: --mutations-per-pixel): a large step (every
+//      number afresh) with probability --large-step-prob, else a small step (Kelemen's offset
+//      of every number the path read, --small-step).
+//   3. Every step deposits expected values: the current path gets (1 - a) b / f of its
+//      radiance, the proposal a b / f'; a = min(1, f' / f), f the luminance.
+// The chains of a group (kGroupChains) step together on one thread: each step's proposals
+// are one wavefront of the path tracer's stages, drawing their numbers from the chains'
+// vectors (StageContext::replay). Deposits go to an ExactFilm, so the image is the same for
+// any thread count.
+#include "integrators/pssmlt/pssmlt_integrator.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <numeric>
+
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "erpt/chain_options.h"
+#include "erpt/error.h"
+#include "integrators/mlt/mlt_integrator.h"
+#include "integrators/path/path_integrator.h"
+#include "integrators/systematic_resampling.h"
+#include "integrators/chain_options.h"
+#include "integrators/sample_passes.h"
+#include "kernels/primary_samples.h"
+#include "models/exact_film.h"
+#include "models/film_density.h"
+#include "render_setup.h"
+
+namespace erpt {
+
+namespace {
+constexpr uint64_t kBootstrapStream = 0x7073626f6f74ull, kResampleStream = 0x70737265736dull,
+                   kChainStream = 0x707373746570ull;
+// Chains stepped together by one task: one wavefront of proposals per step.
+constexpr size_t kGroupChains = 256;
+// Dimensions of a step's stream that the path tracer never reads: the step's two coins.
+constexpr uint32_t kDimLargeCoin = 0x7ffffff0u, kDimAcceptCoin = 0x7ffffff1u;
+// A chain's vector takes about 2 KB (primary_samples.h): a million chains, 2 GB.
+constexpr int kMaxPssmltChains = 1 << 20;
+constexpr double kMaxBootstrapSamples = double(1u << 30);
+
+double secondsSince(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// The target function of a path: its radiance's luminance (0 for a sample the film would drop).
+double targetOf(Color c) { return isFinite(c) ? std::max(0.0, double(luminance(c))) : 0.0; }
+
+// One task's tracing memory and the outputs of a group's proposals.
+struct GroupScratch {
+  PathTracerScratch tracer;
+  std::vector<uint8_t> large;  // this step's kind, by chain of the group
+  std::vector<uint32_t> chains;
+  std::vector<float> x, y;
+  std::vector<Color> radiance;
+};
+
+// Traces the proposals of chains [first, first + n) of `samples` on the calling thread.
+uint64_t traceProposals(const RenderSetup& setup, PrimarySamples& samples, size_t first, size_t n, GroupScratch& g,
+                        StageTimes& times) {
+  StageContext ctx = setup.ctx;
+  ctx.replay = &samples;
+  g.chains.resize(n);
+  std::iota(g.chains.begin(), g.chains.end(), uint32_t(first));
+  g.x.resize(n), g.y.resize(n), g.radiance.resize(n);
+  return traceReplayedSamples(setup.tracer, ctx, g.chains.data(), n, g.tracer, times, g.x.data(), g.y.data(),
+                              g.radiance.data());
+}
+
+// Stage times of the tasks, in seconds of the whole pool (thread time / threads).
+class PoolTimes {
+ public:
+  PoolTimes(StageTimes& to, int threads) : to_(to), threads_(double(threads)) {}
+  void add(const StageTimes& task) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (const auto& [stage, seconds] : task.all()) to_.add(stage, seconds / threads_);
+  }
+
+ private:
+  StageTimes& to_;
+  double threads_;
+  std::mutex mutex_;
+};
+
+uint64_t bootstrapKey(uint64_t seed, size_t sample) { return streamKey(seed, kBootstrapStream, sample); }
+
+// The bootstrap: the target value of `count` samples of fresh primary vectors.
+std::vector<double> runBootstrap(const RenderSetup& setup, uint64_t seed, size_t count, PoolTimes& times,
+                                 std::atomic<uint64_t>& rays, std::atomic<uint64_t>& invalid) {
+  struct Scratch {
+    PrimarySamples samples{kGroupChains, 1.0};  // large steps only: the step size is unused
+    GroupScratch group;
+  };
+  std::vector<double> values(count);
+  PerThread<Scratch> local;
+  forEachRange("pssmlt bootstrap", (count + kGroupChains - 1) / kGroupChains, 1, [&](IndexRange groups) {
+    StageTimes taskTimes;
+    Scratch& s = local.local();
+    for (size_t g = groups.begin; g < groups.end; ++g) {
+      const size_t first = g * kGroupChains, n = std::min(kGroupChains, count - first);
+      for (size_t k = 0; k < n; ++k) s.samples.propose(k, bootstrapKey(seed, first + k), true);
+      rays += traceProposals(setup, s.samples, 0, n, s.group, taskTimes);
+      for (size_t k = 0; k < n; ++k) {
+        values[first + k] = targetOf(s.group.radiance[k]);
+        invalid += !isFinite(s.group.radiance[k]);
+      }
+    }
+    times.add(taskTimes);
+  });
+  return values;
+}
+
+// The chains' current paths, by chain.
+struct ChainPaths {
+  std::vector<float> x, y;
+  std::vector<double> value;  // f: the target function
+  std::vector<Color> radiance;
+  explicit ChainPaths(size_t n) : x(n), y(n), value(n), radiance(n) {}
+};
+
+struct GroupCounts {
+  uint64_t small = 0, smallAccepted = 0, large = 0, largeAccepted = 0, invalid = 0, steps = 0;
+};
+
+}  // namespace
+
+void validatePssmltSettings(const RenderSettings& s) {
+  const MltSettings& m = mltOf(s);
+  if (m.chains > kMaxPssmltChains)
+    throw UsageError("--chains " + std::to_string(m.chains) + " is more than pssmlt's " +
+                     std::to_string(kMaxPssmltChains) + " (each chain keeps a vector of about 2 KB)");
+  const double pixels = double(s.width) * double(s.height);
+  if (double(std::max(m.bootstrapSpp, 1)) * pixels > kMaxBootstrapSamples)
+    throw UsageError("--bootstrap x pixels gives more than 2^30 bootstrap samples");
+  if (s.share.split()) throw UsageError("pssmlt does not split a render over processes");
+  if (s.resume || s.onPasses) throw UsageError("pssmlt does not write checkpoints or partial images");
+}
+
+RgbImage renderPssmlt(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+  validatePssmltSettings(s);
+  PssmltStats& ps = pssmltStatsOf(stats);
+  const MltSettings& m = mltOf(s);
+  RenderSetup setup(scene, s);
+  const size_t pixels = size_t(s.width) * size_t(s.height);
+  const double mutationsPerPixel = chainOf(s).mutationsPerPixel;
+  PoolTimes times(stats.stages, setup.pool.threads());
+  std::atomic<uint64_t> rays{0}, invalid{0};
+
+  // 1. The bootstrap.
+  const auto bootStart = std::chrono::steady_clock::now();
+  const size_t bootCount =
+      size_t(bootstrapSamplesPerPixel(m, double(pixels), mutationsPerPixel, kPathSampleSteps)) * pixels;
+  const std::vector<double> bootValues = runBootstrap(setup, s.seed, bootCount, times, rays, invalid);
+  const double b = std::accumulate(bootValues.begin(), bootValues.end(), 0.0) / double(bootCount);
+  ps.b = b;
+  ps.bootstrapSamples = bootCount;
+  stats.samples = bootCount;
+  if (s.progress) s.progress(0.05);
+
+  // 2. The chains' starts: bootstrap samples resampled by their value, replayed into the chains.
+  const size_t chains = size_t(m.chains);
+  const uint64_t length = uint64_t(std::ceil(mutationsPerPixel * double(pixels) / double(chains)));
+  ExactFilm film(s.width, s.height, std::max(b, 1e-30) * 0x1p-24, true);
+  const FilmDensity density(setup.filter, s.width, s.height, true);  // film positions uniform over the image
+  std::atomic<uint64_t> stepsDone{0};
+  GroupCounts total;
+  if (b > 0) {
+    const std::vector<size_t> picks =
+        systematicPicks(bootValues, chains, uniformDouble(streamKey(s.seed, kResampleStream, 0), 0));
+    PrimarySamples primary(chains, pssmltOf(s).smallStep);
+    ChainPaths current(chains);
+    const uint64_t chainSeed = streamKey(s.seed, kChainStream, 0);
+    const size_t groups = (chains + kGroupChains - 1) / kGroupChains;
+    std::vector<GroupCounts> counts(groups);
+    PerThread<GroupScratch> local;
+    std::mutex progressMutex;
+    ps.bootstrapSeconds = secondsSince(bootStart);
+    const auto chainStart = std::chrono::steady_clock::now();
+
+    const auto deposit = [&](float x, float y, Color c, double weight) {
+      density.splat(x, y, [&](uint32_t pixel, float w) { film.add(pixel, c, float(weight) * w); });
+    };
+    forEachRange("pssmlt chains", groups, 1, [&](IndexRange range) {
+      StageTimes taskTimes;
+      GroupScratch& g = local.local();
+      for (size_t group = range.begin; group < range.end; ++group) {
+        const size_t first = group * kGroupChains, n = std::min(kGroupChains, chains - first);
+        GroupCounts& count = counts[group];
+        for (size_t k = 0; k < n; ++k) primary.propose(first + k, bootstrapKey(s.seed, picks[first + k]), true);
+        rays += traceProposals(setup, primary, first, n, g, taskTimes);
+        for (size_t k = 0; k < n; ++k) {
+          const size_t c = first + k;
+          primary.accept(c);
+          current.x[c] = g.x[k], current.y[c] = g.y[k];
+          current.radiance[c] = g.radiance[k];
+          current.value[c] = targetOf(g.radiance[k]);  // > 0: the bootstrap's value, replayed
+        }
+        for (uint64_t t = 0; t < length; ++t) {
+          if (stopRequested(s.stop)) break;
+          const auto start = std::chrono::steady_clock::now();
+          g.large.resize(n);
+          for (size_t k = 0; k < n; ++k) {
+            const uint64_t key = streamKey(chainSeed, first + k, t);
+            g.large[k] = uniformDouble(key, kDimLargeCoin) < m.largeStepProbability;
+            primary.propose(first + k, key, g.large[k]);
+          }
+          taskTimes.add("propose", secondsSince(start));
+          rays += traceProposals(setup, primary, first, n, g, taskTimes);
+          const auto accepting = std::chrono::steady_clock::now();
+          for (size_t k = 0; k < n; ++k) {
+            const size_t c = first + k;
+            const uint64_t key = streamKey(chainSeed, c, t);
+            const bool large = g.large[k];
+            const double f = current.value[c], proposed = targetOf(g.radiance[k]);
+            count.invalid += !isFinite(g.radiance[k]);
+            const double a = f > 0 ? std::min(1.0, proposed / f) : 1.0;
+            // Expected values (docs/pssmlt.md): each path's radiance scaled to luminance b.
+            if (f > 0 && a < 1) deposit(current.x[c], current.y[c], current.radiance[c] * float(b / f), 1 - a);
+            if (a > 0) deposit(g.x[k], g.y[k], g.radiance[k] * float(b / proposed), a);
+            const bool accepted = uniformDouble(key, kDimAcceptCoin) < a;
+            (large ? count.large : count.small) += 1;
+            (large ? count.largeAccepted : count.smallAccepted) += accepted;
+            if (!accepted) continue;
+            primary.accept(c);
+            current.x[c] = g.x[k], current.y[c] = g.y[k];
+            current.radiance[c] = g.radiance[k];
+            current.value[c] = proposed;
+          }
+          taskTimes.add("accept and deposit", secondsSince(accepting));
+          count.steps += n;
+          const uint64_t done = stepsDone += n;
+          if (s.progress && t % 16 == 15) {
+            std::lock_guard<std::mutex> lock(progressMutex);
+            s.progress(0.05 + 0.95 * double(done) / (double(chains) * double(length)));
+          }
+        }
+      }
+      times.add(taskTimes);
+    });
+    ps.chainSeconds = secondsSince(chainStart);
+    for (const GroupCounts& c : counts) {
+      total.small += c.small, total.smallAccepted += c.smallAccepted;
+      total.large += c.large, total.largeAccepted += c.largeAccepted;
+      total.invalid += c.invalid, total.steps += c.steps;
+    }
+  } else {
+    ps.bootstrapSeconds = secondsSince(bootStart);
+  }
+  ps.chains = chains;
+  ps.chainLength = length;
+  ps.smallSteps = total.small, ps.smallAccepted = total.smallAccepted;
+  ps.largeSteps = total.large, ps.largeAccepted = total.largeAccepted;
+  ps.invalidProposals = total.invalid;
+  ps.rays = rays;
+  stats.rays += rays;
+  stats.invalidSamples += invalid + total.invalid;
+
+  // 3. The image: every step deposited luminance b in all; the mean over the steps per pixel.
+  RgbImage image;
+  image.width = s.width, image.height = s.height;
+  image.pixels.assign(pixels, Color(0.0f));
+  const bool complete = b == 0 || stepsDone == uint64_t(chains) * length;
+  stats.spp = complete ? 1 : 0;
+  if (!complete) {
+    stats.partial = true;
+    stats.keptSpp = std::max(1e-9, double(s.spp) * double(stepsDone) / (double(chains) * double(length)));
+  }
+  if (stepsDone > 0) film.addTo(image, double(stepsDone) / double(pixels));
+  return image;
+}
+
+IntegratorModule pssmltModule() {
+  IntegratorModule m;
+  m.name = "pssmlt";
+  m.description =
+      "primary-sample-space MLT (Kelemen et al. 2002) over the path tracer, expected-value deposits (docs/pssmlt.md)";
+  m.options = {mutationsPerPixelOption()};
+  addOptions(m.options, metropolisOptions());
+  m.options.push_back(realOption("small-step",
+                                 "Kelemen's largest small-step offset s2 of a primary sample (the smallest is s2 / 16)",
+                                 1e-6, 0.5, [](auto& s) -> auto& { return pssmltOf(s).smallStep; }));
+  m.sppOption = "mutations-per-pixel";  // Mitsuba's sample count, as for mlt
+  m.validate = validatePssmltSettings;
+  m.render = renderPssmlt;
+  m.printSummary = printPssmltSummary;
+  m.addStats = [](RenderStats& to, const RenderStats& from) { addPssmltStats(pssmltStatsOf(to), pssmltStatsOf(from)); };
+  m.scaleTimedPass = [](const RenderSettings& s, RenderSettings& pass) {
+    chainOf(pass).mutationsPerPixel = std::max(1, int(std::lround(double(chainOf(s).mutationsPerPixel) * pass.spp / s.spp)));
+  };
+  return m;
+}
+
+}  // namespace erpt
