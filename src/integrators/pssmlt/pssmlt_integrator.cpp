@@ -9,8 +9,9 @@
 //      state), then takes L = M pixels / C steps (M: --mutations-per-pixel): a large step (every
 //      number afresh) with probability --large-step-prob, else a small step (Kelemen's offset
 //      of every number the path read, --small-step).
-//   3. Every step deposits expected values: the current path gets (1 - a) b / f of its
-//      radiance, the proposal a b / f'; a = min(1, f' / f), f the luminance.
+//   3. Every step deposits expected values with Kelemen's weights: the current path gets
+//      (1 - a) / (f / b + p) of its radiance, the proposal (a + [large]) / (f' / b + p);
+//      a = min(1, f' / f), f the luminance, p the large-step probability.
 // The chains of a group (kGroupChains) step together on one thread: each step's proposals
 // are one wavefront of the path tracer's stages, drawing their numbers from the chains'
 // vectors (StageContext::replay). Deposits go to an ExactFilm, so the image is the same for
@@ -189,6 +190,7 @@ RgbImage renderPssmlt(const Scene& scene, const RenderSettings& s, RenderStats& 
     ps.bootstrapSeconds = secondsSince(bootStart);
     const auto chainStart = std::chrono::steady_clock::now();
 
+    const double pLarge = m.largeStepProbability;
     const auto deposit = [&](float x, float y, Color c, double weight) {
       density.splat(x, y, [&](uint32_t pixel, float w) { film.add(pixel, c, float(weight) * w); });
     };
@@ -226,9 +228,11 @@ RgbImage renderPssmlt(const Scene& scene, const RenderSettings& s, RenderStats& 
             const double f = current.value[c], proposed = targetOf(g.radiance[k]);
             count.invalid += !isFinite(g.radiance[k]);
             const double a = f > 0 ? std::min(1.0, proposed / f) : 1.0;
-            // Expected values (docs/pssmlt.md): each path's radiance scaled to luminance b.
-            if (f > 0 && a < 1) deposit(current.x[c], current.y[c], current.radiance[c] * float(b / f), 1 - a);
-            if (a > 0) deposit(g.x[k], g.y[k], g.radiance[k] * float(b / proposed), a);
+            // Expected values with Kelemen's weights (docs/pssmlt.md): the chain's estimate and
+            // the large steps' own Monte Carlo estimate, combined by the balance heuristic.
+            const double kept = (1 - a) / (f / b + pLarge), moved = (a + (large ? 1 : 0)) / (proposed / b + pLarge);
+            if (f > 0 && kept > 0) deposit(current.x[c], current.y[c], current.radiance[c], kept);
+            if (proposed > 0 && moved > 0) deposit(g.x[k], g.y[k], g.radiance[k], moved);
             const bool accepted = uniformDouble(key, kDimAcceptCoin) < a;
             (large ? count.large : count.small) += 1;
             (large ? count.largeAccepted : count.smallAccepted) += accepted;
