@@ -12,25 +12,34 @@ namespace {
 constexpr double kSmallStepRatio = 16;
 }  // namespace
 
-PrimarySamples::PrimarySamples(size_t chains, double smallStep)
+PrimarySamples::PrimarySamples(size_t chains, double smallStep, bool lightSubpaths)
     : smallStep_(smallStep),
       logRatio_(std::log(kSmallStepRatio)),
-      current_(chains * kKeptSlots),
-      proposed_(chains * kKeptSlots),
-      currentMask_(chains * kMaskWords),
-      proposedMask_(chains * kMaskWords),
+      slots_(kSlotsPerStream * (lightSubpaths ? 2 : 1)),
+      maskWords_(slots_ / 64),
+      current_(chains * slots_),
+      proposed_(chains * slots_),
+      currentMask_(chains * maskWords_),
+      proposedMask_(chains * maskWords_),
       attemptKey_(chains),
       large_(chains) {}
 
-uint32_t PrimarySamples::slotOf(uint32_t dim) {
-  if (dim == kDimLensX || dim == kDimLensY) return kKeptSlots - 2 + (dim - kDimLensX);
-  return dim < kKeptSlots - 2 ? dim : kKeptSlots;
+uint32_t PrimarySamples::slotOf(uint64_t stream, uint32_t dim) const {
+  const bool light = (stream & kLightSubpathStream) != 0;
+  if (light && slots_ == kSlotsPerStream) return slots_;
+  const uint32_t base = light ? kSlotsPerStream : 0;
+  if (dim == kDimLensX || dim == kDimLensY) return base + kSlotsPerStream - 2 + (dim - kDimLensX);
+  // The light subpath's emission sample takes its first slots, its bounces the next ones (its
+  // dimensions 0 and 1, the camera's film position, are never read).
+  if (light && dim >= kDimEmitPick && dim < kDimEmitPick + kEmitDims) return base + (dim - kDimEmitPick);
+  const uint32_t local = light ? dim + kEmitDims : dim;
+  return local < kSlotsPerStream - 2 ? base + local : slots_;
 }
 
 void PrimarySamples::propose(size_t c, uint64_t attemptKey, bool large) {
   attemptKey_[c] = attemptKey;
   large_[c] = large;
-  for (uint32_t w = 0; w < kMaskWords; ++w) proposedMask_[c * kMaskWords + w] = 0;
+  for (uint32_t w = 0; w < maskWords_; ++w) proposedMask_[c * maskWords_ + w] = 0;
 }
 
 uint64_t PrimarySamples::smallStepOffset(uint64_t random) const {
@@ -41,38 +50,41 @@ uint64_t PrimarySamples::smallStepOffset(uint64_t random) const {
   return (random >> 63) ? 0 - units : units;
 }
 
-uint64_t PrimarySamples::bits(size_t c, uint32_t dim) {
-  const uint64_t fresh = uniformBits(attemptKey_[c], dim);
-  const uint32_t slot = slotOf(dim);
-  if (slot >= kKeptSlots) return fresh;
-  const size_t at = c * kKeptSlots + slot;
-  uint64_t& word = proposedMask_[c * kMaskWords + slot / 64];
+uint64_t PrimarySamples::bits(uint64_t stream, uint32_t dim) {
+  const size_t c = chainOf(stream);
+  // The light subpath's numbers come from another stream of the attempt than the camera's.
+  const uint64_t key = (stream & kLightSubpathStream) ? mix64(attemptKey_[c] ^ kLightSubpathStream) : attemptKey_[c];
+  const uint64_t fresh = uniformBits(key, dim);
+  const uint32_t slot = slotOf(stream, dim);
+  if (slot >= slots_) return fresh;
+  const size_t at = c * slots_ + slot;
+  uint64_t& word = proposedMask_[c * maskWords_ + slot / 64];
   const uint64_t bit = uint64_t(1) << (slot % 64);
   if (word & bit) return proposed_[at];
   // A small step moves a kept value; the rest are drawn afresh (see the header). The offset's
   // random bits come from another dimension of the attempt's stream than the fresh value's.
   const bool kept = !large_[c] && has(currentMask_, c, slot);
-  const uint64_t value = kept ? current_[at] + smallStepOffset(uniformBits(attemptKey_[c], dim ^ 0x80000000u)) : fresh;
+  const uint64_t value = kept ? current_[at] + smallStepOffset(uniformBits(key, dim ^ 0x80000000u)) : fresh;
   proposed_[at] = value;
   word |= bit;
   return value;
 }
 
 void PrimarySamples::accept(size_t c) {
-  for (uint32_t w = 0; w < kMaskWords; ++w) {
-    uint64_t mask = proposedMask_[c * kMaskWords + w];
-    currentMask_[c * kMaskWords + w] = mask;
+  for (uint32_t w = 0; w < maskWords_; ++w) {
+    uint64_t mask = proposedMask_[c * maskWords_ + w];
+    currentMask_[c * maskWords_ + w] = mask;
     while (mask) {
       const uint32_t slot = w * 64 + uint32_t(__builtin_ctzll(mask));
-      current_[c * kKeptSlots + slot] = proposed_[c * kKeptSlots + slot];
+      current_[c * slots_ + slot] = proposed_[c * slots_ + slot];
       mask &= mask - 1;
     }
   }
 }
 
-bool PrimarySamples::keeps(size_t c, uint32_t dim) const {
-  const uint32_t slot = slotOf(dim);
-  return slot < kKeptSlots && has(currentMask_, c, slot);
+bool PrimarySamples::keeps(uint64_t stream, uint32_t dim) const {
+  const uint32_t slot = slotOf(stream, dim);
+  return slot < slots_ && has(currentMask_, chainOf(stream), slot);
 }
 
 }  // namespace erpt

@@ -11,8 +11,8 @@
 //   valid).
 // - A small step moves every kept dimension by Kelemen's exponential offset, +-s2 (s1/s2)^u,
 //   s1 = s2 / 16, modulo 1 (symmetric); a large step draws every dimension afresh.
-// - Dimensions past kKeptSlots (paths longer than the slots hold) are drawn afresh by every
-//   proposal: an independence proposal, also symmetric.
+// - Dimensions past the kept slots (paths longer than the slots hold) are drawn afresh by
+//   every proposal: an independence proposal, also symmetric.
 // Every proposal's numbers are a pure function of the state and the attempt's stream key, so
 // a dimension read twice gives the same value, and the image is the same for any thread count.
 #pragma once
@@ -21,41 +21,47 @@
 #include <cstdint>
 #include <vector>
 
+#include "kernels/sample_dimensions.h"
+
 namespace erpt {
 
 class PrimarySamples {
  public:
-  // Kept dimensions per chain: film x and y, 15 bounces of the path tracer's 8 and the lens.
-  static constexpr uint32_t kKeptSlots = 128;
+  // Kept numbers per stream: film x and y, 15 bounces of 8 and the lens (camera); the emission
+  // sample, 15 bounces and the lens point of light tracing (a BDPT sample's light subpath).
+  static constexpr uint32_t kSlotsPerStream = 128;
 
-  // smallStep: Kelemen's s2, the largest offset of a small step.
-  PrimarySamples(size_t chains, double smallStep);
+  // smallStep: Kelemen's s2, the largest offset of a small step. lightSubpaths: the chains
+  // replay BDPT samples, whose light subpaths draw from a stream of their own.
+  PrimarySamples(size_t chains, double smallStep, bool lightSubpaths = false);
   size_t chains() const { return attemptKey_.size(); }
 
   // Chain c's next proposal draws from stream `attemptKey`: afresh everywhere (large) or from
   // its current vector by small steps. Forgets the previous proposal.
   void propose(size_t c, uint64_t attemptKey, bool large);
-  // Dimension `dim` of chain c's proposal, as 64 random bits (the top ones are its value).
-  uint64_t bits(size_t c, uint32_t dim);
-  // The proposal becomes chain c's state: the dimensions it read, with their values.
+  // Dimension `dim` of a chain's proposal, as 64 random bits (the top ones are its value).
+  // `stream`: the chain's index, with kLightSubpathStream set for its light subpath.
+  uint64_t bits(uint64_t stream, uint32_t dim);
+  // The proposal becomes chain c's state: the numbers it read, with their values.
   void accept(size_t c);
-  // Dimensions chain c's state keeps (tests).
-  bool keeps(size_t c, uint32_t dim) const;
+  // Whether chain c's state keeps dimension `dim` of `stream` (tests).
+  bool keeps(uint64_t stream, uint32_t dim) const;
 
   // Kelemen's offset from 64 random bits, in units of 2^-64 (added modulo 2^64).
   uint64_t smallStepOffset(uint64_t random) const;
 
  private:
-  static constexpr uint32_t kMaskWords = kKeptSlots / 64;
-  // The slot of a sampler dimension, or kKeptSlots when it is not kept.
-  static uint32_t slotOf(uint32_t dim);
+  // The chain's slot of a stream's dimension, or slots_ when it is not kept.
+  uint32_t slotOf(uint64_t stream, uint32_t dim) const;
+  size_t chainOf(uint64_t stream) const { return size_t(stream & ~kLightSubpathStream); }
   bool has(const std::vector<uint64_t>& mask, size_t c, uint32_t slot) const {
-    return (mask[c * kMaskWords + slot / 64] >> (slot % 64)) & 1;
+    return (mask[c * maskWords_ + slot / 64] >> (slot % 64)) & 1;
   }
 
   double smallStep_, logRatio_;
-  std::vector<uint64_t> current_, proposed_;          // chain c's slot s at c * kKeptSlots + s
-  std::vector<uint64_t> currentMask_, proposedMask_;  // kMaskWords per chain
+  uint32_t slots_, maskWords_;                        // per chain
+  std::vector<uint64_t> current_, proposed_;          // chain c's slot s at c * slots_ + s
+  std::vector<uint64_t> currentMask_, proposedMask_;  // maskWords_ per chain
   std::vector<uint64_t> attemptKey_;
   std::vector<uint8_t> large_;
 };

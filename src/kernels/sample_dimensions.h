@@ -1,5 +1,5 @@
-// The random-number dimensions of one path-tracer sample: what each number of a camera
-// sample's stream is used for. The stages draw them (stages.h); primary sample space
+// The random-number dimensions of one path-tracer or BDPT sample: what each number of a
+// sample's streams is used for. The stages draw them (stages.h); primary sample space
 // (primary_samples.h) keeps them per chain.
 #pragma once
 
@@ -15,5 +15,13 @@ constexpr uint32_t kDimFilmX = 0, kDimFilmY = 1;
 constexpr uint32_t kDimLensX = 0x7fff0000u, kDimLensY = 0x7fff0001u;
 enum BounceDim : uint32_t { kLightPick = 0, kLight1, kLight2, kLobe, kBsdf1, kBsdf2, kRoulette, kBounceDims = 8 };
 inline uint32_t bounceDim(uint32_t depth, BounceDim use) { return 2 + kBounceDims * (depth - 1) + use; }
+
+// A BDPT sample's light subpath draws from a stream of its own: its emission sample (the light
+// pick, then four numbers) apart from the bounces (bounceDim, as the camera subpath's) and, for
+// light tracing, the lens point (kDimLensX, kDimLensY).
+constexpr uint32_t kDimEmitPick = 0x7ffe0000u, kDimEmit1 = kDimEmitPick + 1, kEmitDims = 5;
+// Replaying primary samples (primary_samples.h), a stream key is a chain's index, with this bit
+// set for its light subpath's numbers.
+constexpr uint64_t kLightSubpathStream = uint64_t(1) << 63;
 
 }  // namespace erpt

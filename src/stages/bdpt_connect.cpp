@@ -95,7 +95,7 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
   const float ppu = camera.pixelsPerPlaneUnit();
   auto keep = [&](int s, int t) {
     return (ctx.onlyS < 0 || s == ctx.onlyS) && (ctx.onlyT < 0 || t == ctx.onlyT) &&
-           (maxDepth < 0 || s + t - 1 <= maxDepth);
+           (maxDepth < 0 || s + t - 1 <= maxDepth) && s + t - 1 >= ctx.stage.minSegments;
   };
   auto weight = [&](const MisBuilder& mis, int s) { return ctx.unweighted ? 1.0f : bdptMisWeight(mis.path, s); };
   // Appends a contribution of strategy (s, t) with its shadow ray from `from` to `to` (none for s = 0).
@@ -181,14 +181,14 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
     }
 
     // s = 1: next-event estimation from camera vertex j (t = j + 1).
-    const uint64_t cameraKey = sampleKey(ctx.stage.seed, paths.pixel[i], paths.sample[i]);
+    const uint64_t cameraKey = sampleStream(ctx.stage, paths.pixel[i], paths.sample[i]);
     for (int j = 1; j < nC; ++j) {
       const BdptVertex& y = cam[j];
       if (!cameraBsdf[j].connectable() || !keep(1, j + 1)) continue;
       LightSample ls;
-      if (!lights.sample(y.p, uniformDouble(cameraKey, bounceDim(uint32_t(j), kLightPick)),
-                         uniformFloat(cameraKey, bounceDim(uint32_t(j), kLight1)),
-                         uniformFloat(cameraKey, bounceDim(uint32_t(j), kLight2)), ls))
+      if (!lights.sample(y.p, drawDouble(ctx.stage, cameraKey, bounceDim(uint32_t(j), kLightPick)),
+                         drawFloat(ctx.stage, cameraKey, bounceDim(uint32_t(j), kLight1)),
+                         drawFloat(ctx.stage, cameraKey, bounceDim(uint32_t(j), kLight2)), ls))
         continue;
       const Vec3 towardCamera = directionTo(y, cam[j - 1]);
       const Color f = cameraBsdf[j].eval(towardCamera, ls.direction);
@@ -253,10 +253,10 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
 
     // t = 1: light vertex s - 1 to a point on the lens, splatted where it lands.
     if (nL > 0) {
-      const uint64_t lightKey = lightSubpathKey(ctx.stage.seed, paths.pixel[i], paths.sample[i]);
+      const uint64_t lightKey = lightSubpathStream(ctx.stage, paths.pixel[i], paths.sample[i]);
       BdptVertex eye;
       eye.kind = kEyeVertex;
-      eye.p = camera.lensPoint(uniformFloat(lightKey, kDimLensX), uniformFloat(lightKey, kDimLensY));
+      eye.p = camera.lensPoint(drawFloat(ctx.stage, lightKey, kDimLensX), drawFloat(ctx.stage, lightKey, kDimLensY));
       eye.ng = camera.forward();
       eye.pdfForward = 1;
       int32_t eyeIndex = 0;  // the lens point's extra vertex, added with the sample's first splat

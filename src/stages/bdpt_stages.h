@@ -25,6 +25,9 @@ struct BdptContext {
 
 // Random numbers of a sample's light subpath: a stream of its own, keyed like the camera's.
 uint64_t lightSubpathKey(uint64_t seed, uint32_t pixel, uint32_t sample);
+// The stream a sample's light subpath draws from: lightSubpathKey, or, replaying primary
+// samples, its chain's light-subpath stream (sampleStream's for the camera subpath).
+uint64_t lightSubpathStream(const StageContext& ctx, uint32_t pixel, uint32_t sample);
 
 // The subpaths of a chunk of samples: every vertex in one queue (appended as the walks make
 // them, linked by `parent`), and per sample its pixel, stratum, film position and newest vertex

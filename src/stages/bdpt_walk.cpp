@@ -21,10 +21,6 @@
 namespace erpt {
 
 namespace {
-// Dimensions of the light subpath's stream: the emission sample apart from the bounces'
-// (which use bounceDim like the camera subpath's).
-constexpr uint32_t kDimEmitPick = 0x7ffe0000u, kDimEmit1 = kDimEmitPick + 1;
-
 BdptVertex surfaceVertex(const Scene& scene, const SurfacePoint& sp) {
   BdptVertex v;
   setSurfaceVertex(v, sp, scene.materials[size_t(sp.material)]);
@@ -36,6 +32,10 @@ BdptVertex surfaceVertex(const Scene& scene, const SurfacePoint& sp) {
 
 uint64_t lightSubpathKey(uint64_t seed, uint32_t pixel, uint32_t sample) {
   return sampleKey(mix64(seed ^ 0x4c6967687450617eull), pixel, sample);
+}
+
+uint64_t lightSubpathStream(const StageContext& ctx, uint32_t pixel, uint32_t sample) {
+  return ctx.replay ? (uint64_t(sample) | kLightSubpathStream) : lightSubpathKey(ctx.seed, pixel, sample);
 }
 
 void BdptSubpaths::resizeSamples(size_t n) {
@@ -60,12 +60,13 @@ void stageBdptStartLight(const BdptContext& ctx, BdptSubpaths& paths, BdptWalkQu
     alive[i] = 0;
     disableRay(rays, i);
     paths.lightEnd[i] = -1;
-    const uint64_t key = lightSubpathKey(ctx.stage.seed, paths.pixel[i], paths.sample[i]);
+    const uint64_t key = lightSubpathStream(ctx.stage, paths.pixel[i], paths.sample[i]);
+    const StageContext& c = ctx.stage;
     EmissionSample es;
     if (ctx.stage.maxDepth == 0 ||
-        !lights.sampleEmission(uniformDouble(key, kDimEmitPick), uniformFloat(key, kDimEmit1),
-                               uniformFloat(key, kDimEmit1 + 1), uniformFloat(key, kDimEmit1 + 2),
-                               uniformFloat(key, kDimEmit1 + 3), es))
+        !lights.sampleEmission(drawDouble(c, key, kDimEmitPick), drawFloat(c, key, kDimEmit1),
+                               drawFloat(c, key, kDimEmit1 + 1), drawFloat(c, key, kDimEmit1 + 2),
+                               drawFloat(c, key, kDimEmit1 + 3), es))
       continue;
     BdptVertex z;
     z.kind = es.infinite ? kEnvironmentVertex : kLightVertex;
@@ -176,14 +177,15 @@ void stageBdptExtend(const BdptContext& ctx, BdptSide side, BdptSubpaths& paths,
     // the camera subpath no more than maxDepth + 1.
     const int maxDepth = ctx.stage.maxDepth;
     if (maxDepth >= 0 && int(depth) + (fromLight ? 1 : 0) >= maxDepth) continue;
-    const uint64_t key = fromLight ? lightSubpathKey(ctx.stage.seed, paths.pixel[i], paths.sample[i])
-                                   : sampleKey(ctx.stage.seed, paths.pixel[i], paths.sample[i]);
+    const uint64_t key = fromLight ? lightSubpathStream(ctx.stage, paths.pixel[i], paths.sample[i])
+                                   : sampleStream(ctx.stage, paths.pixel[i], paths.sample[i]);
     const VertexBsdf bsdf = vertexBsdf(scene, x);
     const Vec3 back = -dir;  // towards the previous vertex
     const Vec3 wiLocal = bsdf.frame.toLocal(back);
     BsdfSample bs;
-    if (!bsdfSample(*bsdf.material, bsdf.colors, wiLocal, uniformFloat(key, bounceDim(depth, kLobe)),
-                    uniformFloat(key, bounceDim(depth, kBsdf1)), uniformFloat(key, bounceDim(depth, kBsdf2)), bs) ||
+    if (!bsdfSample(*bsdf.material, bsdf.colors, wiLocal, drawFloat(ctx.stage, key, bounceDim(depth, kLobe)),
+                    drawFloat(ctx.stage, key, bounceDim(depth, kBsdf1)), drawFloat(ctx.stage, key, bounceDim(depth, kBsdf2)),
+                    bs) ||
         !(bs.pdf > 0) || bs.wo.z == 0)
       continue;
     const Vec3 wo = bsdf.frame.toWorld(bs.wo);
@@ -204,7 +206,7 @@ void stageBdptExtend(const BdptContext& ctx, BdptSide side, BdptSubpaths& paths,
     walks.etaSquared[k] *= bs.eta * bs.eta;
     if (int(depth) >= ctx.stage.rrDepth) {
       const float q = russianRouletteSurvival(scatter, walks.etaSquared[k]);
-      if (!(uniformDouble(key, bounceDim(depth, kRoulette)) < q)) continue;
+      if (!(drawDouble(ctx.stage, key, bounceDim(depth, kRoulette)) < q)) continue;
       beta = beta / q;
       scatter = scatter / q;
     }

@@ -53,7 +53,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
       continue;
     }
     if (hits.geomID[k] == kNoHit) {
-      if (!env) continue;
+      if (!env || int(depth) < ctx.minSegments) continue;
       float lightPdf;
       const Color le = ctx.lights.environmentRadianceAndPdf(*env, dir, lightPdf);
       const float w = emitterHitWeight(prevPdf, lightPdf);
@@ -80,7 +80,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
       history.vertices->setRow(vertex, v);
       paths.lastVertex[id] = int32_t(vertex);
     }
-    const Color le = ctx.lights.emitted(sp, -dir);
+    const Color le = int(depth) >= ctx.minSegments ? ctx.lights.emitted(sp, -dir) : Color(0.0f);
     if (!isBlack(le)) {
       float lightPdf = prevPdf > 0 ? ctx.lights.pdfSolidAngle(sp, prev) : 0.0f;
       const float w = emitterHitWeight(prevPdf, lightPdf);
@@ -98,7 +98,8 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     const Vec3 wi = sp.shading.toLocal(-dir);
 
     LightConnection lc;
-    if (connectToLight(ctx.lights, sp, m, colors, wi, drawDouble(ctx, key, bounceDim(depth, kLightPick)),
+    if (int(depth) + 1 >= ctx.minSegments &&
+        connectToLight(ctx.lights, sp, m, colors, wi, drawDouble(ctx, key, bounceDim(depth, kLightPick)),
                        drawFloat(ctx, key, bounceDim(depth, kLight1)), drawFloat(ctx, key, bounceDim(depth, kLight2)), lc)) {
       slots.neeSet(k, throughput * lc.contribution);
       setRay(shadowRays, k, lc.origin, lc.direction, 0.0f, lc.tfar);

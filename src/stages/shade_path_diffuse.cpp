@@ -206,7 +206,7 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
       slots.emitWeight[k] = slots.neeWeight[k] = 0;
       slots.pLengthHere[k] = paths.pLength[id];
     }
-    if (out_[kNeeOk][j] != 0) {
+    if (out_[kNeeOk][j] != 0 && int(paths.depth[id]) + 1 >= ctx.minSegments) {
       slots.neeSet(k, get3(kNeeR, j));
       setRay(shadowRays, k, get3(kShadowOx, j), get3(kShadowDx, j), 0.0f, out_[kShadowTfar][j]);
       if (recording) {

@@ -33,11 +33,15 @@ struct StageContext {
   // Replaying chains' primary samples (pssmlt): the path stages draw every number from it,
   // and a path's stream key is its chain's index. nullptr: the counter-based streams.
   PrimarySamples* replay = nullptr;
+  // Contributions of paths with fewer segments are left out (pssmlt with a direct pass, which
+  // renders those): emission found after `depth` segments counts from depth >= minSegments,
+  // a next-event connection from there from depth + 1 >= minSegments.
+  int minSegments = 1;
 };
 
 // Dimension `dim` of stream `key`: a counter-based random number, or a chain's primary sample.
 inline uint64_t drawBits(const StageContext& ctx, uint64_t key, uint32_t dim) {
-  return ctx.replay ? ctx.replay->bits(size_t(key), dim) : uniformBits(key, dim);
+  return ctx.replay ? ctx.replay->bits(key, dim) : uniformBits(key, dim);
 }
 // uniformFloat and uniformDouble (core/rng.h) of drawBits.
 inline float drawFloat(const StageContext& ctx, uint64_t key, uint32_t dim) {

@@ -33,7 +33,9 @@ const std::map<std::string, std::map<std::string, std::string>> kBaseline = {
     {"mlt",
      {{"--define", "res=17"}, {"--mutations-per-pixel", "8"}, {"--chains", "16"}, {"--bootstrap", "2"},
       {"--direct-samples", "4"}}},
-    {"pssmlt", {{"--define", "res=17"}, {"--mutations-per-pixel", "8"}, {"--chains", "16"}, {"--bootstrap", "2"}}},
+    {"pssmlt",
+     {{"--define", "res=17"}, {"--mutations-per-pixel", "8"}, {"--chains", "16"}, {"--bootstrap", "2"},
+      {"--direct-samples", "4"}}},
 };
 
 enum class Effect { ChangesImage, KeepsImage, Accepted };

@@ -177,9 +177,16 @@ const std::vector<Sampler>& samplers() {
        }},
       {"Pssmlt", 15,
        [](RenderSettings& s) {
-         s.integrator = "pssmlt";
+         chains(s, "pssmlt", SeedSampler::Path);
          s.spp = 1;
-         chainOf(s).mutationsPerPixel = 64;
+         chainOf(s).directSamples = -1;
+         mltOf(s).bootstrapSpp = 4;
+       }},
+      {"PssmltBdptDirectPass", 15,
+       [](RenderSettings& s) {
+         chains(s, "pssmlt", SeedSampler::Bdpt);
+         s.spp = 1;
+         chainOf(s).directSamples = 4;
          mltOf(s).bootstrapSpp = 4;
        }},
       {"MltBdptSeeds", 15,

@@ -63,6 +63,31 @@ TEST(PrimarySamples, AChainKeepsWhatItsAcceptedProposalRead) {
   EXPECT_FALSE(p.keeps(0, bounceDim(2, kLight1)));
 }
 
+// A BDPT sample's light subpath draws from its own stream of the chain: its numbers are kept
+// in their own slots (the emission sample, the bounces, the lens point), apart from the camera
+// subpath's of the same dimension. A chain made for the path tracer keeps no light subpath.
+TEST(PrimarySamples, ALightSubpathHasItsOwnNumbers) {
+  PrimarySamples p(2, kStep, true);
+  const uint64_t light = 1 | kLightSubpathStream;
+  p.propose(1, streamKey(9, 1, 0), true);
+  const uint32_t dims[] = {kDimEmitPick, kDimEmit1 + 3, bounceDim(1, kLobe), bounceDim(14, kRoulette), kDimLensX};
+  for (uint32_t dim : dims) EXPECT_NE(p.bits(light, dim), p.bits(1, dim)) << "dim " << dim;
+  p.accept(1);
+  for (uint32_t dim : dims) {
+    EXPECT_TRUE(p.keeps(light, dim)) << "dim " << dim;
+    // The emission sample is the light subpath's alone: the camera's stream keeps no slot for it.
+    EXPECT_EQ(p.keeps(1, dim), dim < kDimEmitPick || dim >= kDimEmitPick + kEmitDims) << "dim " << dim;
+  }
+  EXPECT_FALSE(p.keeps(light, kDimEmit1 + 4)) << "not read";
+  EXPECT_FALSE(p.keeps(0 | kLightSubpathStream, kDimEmitPick)) << "another chain";
+
+  PrimarySamples pathOnly(1, kStep);
+  pathOnly.propose(0, streamKey(9, 0, 0), true);
+  pathOnly.bits(kLightSubpathStream, kDimEmitPick);
+  pathOnly.accept(0);
+  EXPECT_FALSE(pathOnly.keeps(kLightSubpathStream, kDimEmitPick));
+}
+
 // The offset's magnitude is s2 (s1 / s2)^u: its logarithm is uniform between log s1 and
 // log s2 (chi-square over 20 bins), and its sign is a fair coin, so the step is symmetric.
 TEST(PrimarySamples, SmallStepOffsetsAreLogUniformAndSymmetric) {

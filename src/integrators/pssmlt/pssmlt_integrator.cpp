@@ -2,6 +2,8 @@
 // Szirmay-Kalos, Antal and Csonka 2002) over the wavefront path tracer, as Mitsuba 0.6's
 // `pssmlt` with its unidirectional sampler (docs/pssmlt.md).
 //
+//   0. Optional (--direct-samples N, default 64): paths of at most two segments go to a
+//      direct pass of the path tracer (as Mitsuba's `directSamples`); the chains hold the rest.
 //   1. Bootstrap (--bootstrap N samples per pixel; by default sized as MLT's): path-tracer
 //      samples of fresh primary vectors. Their mean luminance is b.
 //   2. Chains (--chains C): each starts from a bootstrap sample resampled in proportion to its
@@ -29,8 +31,11 @@
 #include "core/rng.h"
 #include "erpt/chain_options.h"
 #include "erpt/error.h"
+#include "integrators/bdpt/bdpt_wavefront.h"
 #include "integrators/mlt/mlt_integrator.h"
+#include "integrators/seed_sampler.h"
 #include "integrators/path/path_integrator.h"
+#include "integrators/redistribution_parts.h"
 #include "integrators/systematic_resampling.h"
 #include "integrators/chain_options.h"
 #include "integrators/sample_passes.h"
@@ -43,7 +48,7 @@ namespace erpt {
 
 namespace {
 constexpr uint64_t kBootstrapStream = 0x7073626f6f74ull, kResampleStream = 0x70737265736dull,
-                   kChainStream = 0x707373746570ull;
+                   kChainStream = 0x707373746570ull, kDirectStream = 0x707364697265ull;
 // Chains stepped together by one task: one wavefront of proposals per step.
 constexpr size_t kGroupChains = 256;
 // Dimensions of a step's stream that the path tracer never reads: the step's two coins.
@@ -56,28 +61,94 @@ double secondsSince(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-// The target function of a path: its radiance's luminance (0 for a sample the film would drop).
-double targetOf(Color c) { return isFinite(c) ? std::max(0.0, double(luminance(c))) : 0.0; }
+// One splat of a sample: the radiance it brings to a film position. A path-tracer sample has
+// one; a BDPT sample has its camera strategies' sum and each light-tracing connection's.
+struct Splat {
+  float x, y;
+  Color c;
+};
 
-// One task's tracing memory and the outputs of a group's proposals.
+// The samples of a group's proposals: proposal k's splats are splats[begin[k], begin[k + 1]),
+// its target value f (the luminance of all of them) is value[k], and invalid[k] says it had a
+// value that was not finite (the proposal is then rejected with f = 0).
+struct ProposalSamples {
+  std::vector<Splat> splats;
+  std::vector<uint32_t> begin;
+  std::vector<double> value;
+  std::vector<uint8_t> invalid;
+  void start(size_t n) {
+    splats.clear();
+    begin.assign(1, 0);
+    value.assign(n, 0.0);
+    invalid.assign(n, 0);
+  }
+  void add(size_t k, float x, float y, Color c) {
+    if (!isFinite(c)) invalid[k] = 1;
+    else if (!isBlack(c)) splats.push_back({x, y, c});
+  }
+  // Closes proposal k's list (proposals close in order).
+  void close(size_t k) {
+    begin.push_back(uint32_t(splats.size()));
+    double f = 0;
+    for (uint32_t i = begin[k]; i < begin[k + 1]; ++i) f += std::max(0.0, double(luminance(splats[i].c)));
+    value[k] = invalid[k] ? 0.0 : f;
+  }
+};
+
+// One task's tracing memory: the path tracer's or BDPT's queues, and a group's results.
 struct GroupScratch {
   PathTracerScratch tracer;
+  BdptWavefront bdpt;
   std::vector<uint8_t> large;  // this step's kind, by chain of the group
   std::vector<uint32_t> chains;
   std::vector<float> x, y;
   std::vector<Color> radiance;
+  ProposalSamples proposals;
 };
 
-// Traces the proposals of chains [first, first + n) of `samples` on the calling thread.
-uint64_t traceProposals(const RenderSetup& setup, PrimarySamples& samples, size_t first, size_t n, GroupScratch& g,
-                        StageTimes& times) {
+// Traces the proposals of chains [first, first + n) of `samples` on the calling thread, by the
+// path tracer or by BDPT, into g.proposals. Returns the rays traced.
+uint64_t traceProposals(const RenderSetup& setup, SeedSampler sampler, PrimarySamples& samples, size_t first, size_t n,
+                        GroupScratch& g, StageTimes& times) {
   StageContext ctx = setup.ctx;
   ctx.replay = &samples;
-  g.chains.resize(n);
-  std::iota(g.chains.begin(), g.chains.end(), uint32_t(first));
-  g.x.resize(n), g.y.resize(n), g.radiance.resize(n);
-  return traceReplayedSamples(setup.tracer, ctx, g.chains.data(), n, g.tracer, times, g.x.data(), g.y.data(),
-                              g.radiance.data());
+  ProposalSamples& out = g.proposals;
+  out.start(n);
+  if (sampler == SeedSampler::Path) {
+    g.chains.resize(n);
+    std::iota(g.chains.begin(), g.chains.end(), uint32_t(first));
+    g.x.resize(n), g.y.resize(n), g.radiance.resize(n);
+    const uint64_t rays = traceReplayedSamples(setup.tracer, ctx, g.chains.data(), n, g.tracer, times, g.x.data(),
+                                               g.y.data(), g.radiance.data());
+    for (size_t k = 0; k < n; ++k) {
+      out.add(k, g.x[k], g.y[k], g.radiance[k]);
+      out.close(k);
+    }
+    return rays;
+  }
+  // BDPT: both subpaths, every strategy, then each sample's camera strategies at its film
+  // position and its light tracing where it lands (connections are made sample by sample).
+  const BdptContext bctx{ctx, ctx.height, -1, -1, false};
+  BdptWavefront& w = g.bdpt;
+  w.prepare(n);
+  for (size_t k = 0; k < n; ++k) w.paths.pixel[k] = 0, w.paths.sample[k] = uint32_t(first + k);
+  uint64_t rays = walkSubpaths(setup.tracer, bctx, BdptSide::Light, w, n, times);
+  rays += walkSubpaths(setup.tracer, bctx, BdptSide::Camera, w, n, times);
+  rays += connectSubpaths(setup.tracer, bctx, w, n, times);
+  const auto start = std::chrono::steady_clock::now();
+  const size_t m = w.connections.size();
+  for (size_t c = 0; c < m; ++c)
+    if (w.shadowRays.tfar[c] >= 0 && !w.connections.toCamera[c]) w.radiance[w.connections.sample[c]] += w.connections.valueAt(c);
+  size_t c = 0;
+  for (size_t k = 0; k < n; ++k) {
+    out.add(k, w.paths.filmX[k], w.paths.filmY[k], w.radiance[k]);
+    for (; c < m && w.connections.sample[c] == k; ++c)
+      if (w.shadowRays.tfar[c] >= 0 && w.connections.toCamera[c])
+        out.add(k, w.connections.filmX[c], w.connections.filmY[c], w.connections.valueAt(c));
+    out.close(k);
+  }
+  times.add("resolve", secondsSince(start));
+  return rays;
 }
 
 // Stage times of the tasks, in seconds of the whole pool (thread time / threads).
@@ -98,10 +169,11 @@ class PoolTimes {
 uint64_t bootstrapKey(uint64_t seed, size_t sample) { return streamKey(seed, kBootstrapStream, sample); }
 
 // The bootstrap: the target value of `count` samples of fresh primary vectors.
-std::vector<double> runBootstrap(const RenderSetup& setup, uint64_t seed, size_t count, PoolTimes& times,
-                                 std::atomic<uint64_t>& rays, std::atomic<uint64_t>& invalid) {
+std::vector<double> runBootstrap(const RenderSetup& setup, SeedSampler sampler, uint64_t seed, size_t count,
+                                 PoolTimes& times, std::atomic<uint64_t>& rays, std::atomic<uint64_t>& invalid) {
   struct Scratch {
-    PrimarySamples samples{kGroupChains, 1.0};  // large steps only: the step size is unused
+    // Large steps only: the step size is unused.
+    PrimarySamples samples{kGroupChains, 1.0, true};
     GroupScratch group;
   };
   std::vector<double> values(count);
@@ -112,10 +184,10 @@ std::vector<double> runBootstrap(const RenderSetup& setup, uint64_t seed, size_t
     for (size_t g = groups.begin; g < groups.end; ++g) {
       const size_t first = g * kGroupChains, n = std::min(kGroupChains, count - first);
       for (size_t k = 0; k < n; ++k) s.samples.propose(k, bootstrapKey(seed, first + k), true);
-      rays += traceProposals(setup, s.samples, 0, n, s.group, taskTimes);
+      rays += traceProposals(setup, sampler, s.samples, 0, n, s.group, taskTimes);
       for (size_t k = 0; k < n; ++k) {
-        values[first + k] = targetOf(s.group.radiance[k]);
-        invalid += !isFinite(s.group.radiance[k]);
+        values[first + k] = s.group.proposals.value[k];
+        invalid += s.group.proposals.invalid[k];
       }
     }
     times.add(taskTimes);
@@ -123,21 +195,43 @@ std::vector<double> runBootstrap(const RenderSetup& setup, uint64_t seed, size_t
   return values;
 }
 
-// The chains' current paths, by chain.
-struct ChainPaths {
-  std::vector<float> x, y;
-  std::vector<double> value;  // f: the target function
-  std::vector<Color> radiance;
-  explicit ChainPaths(size_t n) : x(n), y(n), value(n), radiance(n) {}
+// The chains' current samples, by chain: their splats and target value f.
+struct ChainSamples {
+  std::vector<std::vector<Splat>> splats;
+  std::vector<double> value;
+  explicit ChainSamples(size_t n) : splats(n), value(n) {}
+  void take(size_t c, const ProposalSamples& p, size_t k) {
+    splats[c].assign(p.splats.begin() + p.begin[k], p.splats.begin() + p.begin[k + 1]);
+    value[c] = p.value[k];
+  }
 };
 
 struct GroupCounts {
   uint64_t small = 0, smallAccepted = 0, large = 0, largeAccepted = 0, invalid = 0, steps = 0;
 };
 
+// --direct-samples N: paths of at most two segments by the path tracer stopped there, N
+// samples per pixel, its own stream. Its film splats uniform samples as the chains' does
+// (unbiased splatting), so that both estimate the same filtered image at the borders too.
+RgbImage renderDirectPart(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+  RenderSettings direct = subRenderSettings(s);
+  direct.integrator = "path";
+  direct.spp = chainOf(s).directSamples;
+  direct.seed = streamKey(s.seed, kDirectStream, 0);
+  direct.maxDepth = s.maxDepth < 0 ? 2 : std::min(2, s.maxDepth);
+  RenderStats directStats;
+  // BDPT's film is unbiased splatting already.
+  RgbImage image = chainOf(s).seeds == SeedSampler::Bdpt ? renderWithSeedSampler(scene, direct, directStats)
+                                                         : renderPath(scene, direct, directStats, FilmMode::SplatUnbiased);
+  stats.rays += directStats.rays;
+  for (const auto& [name, seconds] : directStats.stages.all()) stats.stages.add("direct " + name, seconds);
+  return image;
+}
+
 }  // namespace
 
 void validatePssmltSettings(const RenderSettings& s) {
+  validateChainOptions(chainOf(s));
   const MltSettings& m = mltOf(s);
   if (m.chains > kMaxPssmltChains)
     throw UsageError("--chains " + std::to_string(m.chains) + " is more than pssmlt's " +
@@ -153,7 +247,11 @@ RgbImage renderPssmlt(const Scene& scene, const RenderSettings& s, RenderStats& 
   validatePssmltSettings(s);
   PssmltStats& ps = pssmltStatsOf(stats);
   const MltSettings& m = mltOf(s);
+  const SeedSampler sampler = chainOf(s).seeds;
+  const RgbImage direct = chainOf(s).directSamples > 0 ? renderDirectPart(scene, s, stats) : RgbImage{};
   RenderSetup setup(scene, s);
+  // With a direct pass the chains' paths have three segments or more.
+  if (!direct.pixels.empty()) setup.ctx.minSegments = 3;
   const size_t pixels = size_t(s.width) * size_t(s.height);
   const double mutationsPerPixel = chainOf(s).mutationsPerPixel;
   PoolTimes times(stats.stages, setup.pool.threads());
@@ -163,7 +261,7 @@ RgbImage renderPssmlt(const Scene& scene, const RenderSettings& s, RenderStats& 
   const auto bootStart = std::chrono::steady_clock::now();
   const size_t bootCount =
       size_t(bootstrapSamplesPerPixel(m, double(pixels), mutationsPerPixel, kPathSampleSteps)) * pixels;
-  const std::vector<double> bootValues = runBootstrap(setup, s.seed, bootCount, times, rays, invalid);
+  const std::vector<double> bootValues = runBootstrap(setup, sampler, s.seed, bootCount, times, rays, invalid);
   const double b = std::accumulate(bootValues.begin(), bootValues.end(), 0.0) / double(bootCount);
   ps.b = b;
   ps.bootstrapSamples = bootCount;
@@ -180,8 +278,8 @@ RgbImage renderPssmlt(const Scene& scene, const RenderSettings& s, RenderStats& 
   if (b > 0) {
     const std::vector<size_t> picks =
         systematicPicks(bootValues, chains, uniformDouble(streamKey(s.seed, kResampleStream, 0), 0));
-    PrimarySamples primary(chains, pssmltOf(s).smallStep);
-    ChainPaths current(chains);
+    PrimarySamples primary(chains, pssmltOf(s).smallStep, sampler == SeedSampler::Bdpt);
+    ChainSamples current(chains);
     const uint64_t chainSeed = streamKey(s.seed, kChainStream, 0);
     const size_t groups = (chains + kGroupChains - 1) / kGroupChains;
     std::vector<GroupCounts> counts(groups);
@@ -201,13 +299,10 @@ RgbImage renderPssmlt(const Scene& scene, const RenderSettings& s, RenderStats& 
         const size_t first = group * kGroupChains, n = std::min(kGroupChains, chains - first);
         GroupCounts& count = counts[group];
         for (size_t k = 0; k < n; ++k) primary.propose(first + k, bootstrapKey(s.seed, picks[first + k]), true);
-        rays += traceProposals(setup, primary, first, n, g, taskTimes);
+        rays += traceProposals(setup, sampler, primary, first, n, g, taskTimes);
         for (size_t k = 0; k < n; ++k) {
-          const size_t c = first + k;
-          primary.accept(c);
-          current.x[c] = g.x[k], current.y[c] = g.y[k];
-          current.radiance[c] = g.radiance[k];
-          current.value[c] = targetOf(g.radiance[k]);  // > 0: the bootstrap's value, replayed
+          primary.accept(first + k);
+          current.take(first + k, g.proposals, k);  // f > 0: the bootstrap's value, replayed
         }
         for (uint64_t t = 0; t < length; ++t) {
           if (stopRequested(s.stop)) break;
@@ -219,28 +314,29 @@ RgbImage renderPssmlt(const Scene& scene, const RenderSettings& s, RenderStats& 
             primary.propose(first + k, key, g.large[k]);
           }
           taskTimes.add("propose", secondsSince(start));
-          rays += traceProposals(setup, primary, first, n, g, taskTimes);
+          rays += traceProposals(setup, sampler, primary, first, n, g, taskTimes);
           const auto accepting = std::chrono::steady_clock::now();
+          const ProposalSamples& p = g.proposals;
           for (size_t k = 0; k < n; ++k) {
             const size_t c = first + k;
             const uint64_t key = streamKey(chainSeed, c, t);
             const bool large = g.large[k];
-            const double f = current.value[c], proposed = targetOf(g.radiance[k]);
-            count.invalid += !isFinite(g.radiance[k]);
+            const double f = current.value[c], proposed = p.value[k];
+            count.invalid += p.invalid[k];
             const double a = f > 0 ? std::min(1.0, proposed / f) : 1.0;
             // Expected values with Kelemen's weights (docs/pssmlt.md): the chain's estimate and
             // the large steps' own Monte Carlo estimate, combined by the balance heuristic.
             const double kept = (1 - a) / (f / b + pLarge), moved = (a + (large ? 1 : 0)) / (proposed / b + pLarge);
-            if (f > 0 && kept > 0) deposit(current.x[c], current.y[c], current.radiance[c], kept);
-            if (proposed > 0 && moved > 0) deposit(g.x[k], g.y[k], g.radiance[k], moved);
+            if (f > 0 && kept > 0)
+              for (const Splat& sp : current.splats[c]) deposit(sp.x, sp.y, sp.c, kept);
+            if (proposed > 0 && moved > 0)
+              for (uint32_t i = p.begin[k]; i < p.begin[k + 1]; ++i) deposit(p.splats[i].x, p.splats[i].y, p.splats[i].c, moved);
             const bool accepted = uniformDouble(key, kDimAcceptCoin) < a;
             (large ? count.large : count.small) += 1;
             (large ? count.largeAccepted : count.smallAccepted) += accepted;
             if (!accepted) continue;
             primary.accept(c);
-            current.x[c] = g.x[k], current.y[c] = g.y[k];
-            current.radiance[c] = g.radiance[k];
-            current.value[c] = proposed;
+            current.take(c, p, k);
           }
           taskTimes.add("accept and deposit", secondsSince(accepting));
           count.steps += n;
@@ -282,6 +378,7 @@ RgbImage renderPssmlt(const Scene& scene, const RenderSettings& s, RenderStats& 
     stats.keptSpp = std::max(1e-9, double(s.spp) * double(stepsDone) / (double(chains) * double(length)));
   }
   if (stepsDone > 0) film.addTo(image, double(stepsDone) / double(pixels));
+  for (size_t i = 0; i < direct.pixels.size(); ++i) image.pixels[i] += direct.pixels[i];
   return image;
 }
 
@@ -290,7 +387,7 @@ IntegratorModule pssmltModule() {
   m.name = "pssmlt";
   m.description =
       "primary-sample-space MLT (Kelemen et al. 2002) over the path tracer, expected-value deposits (docs/pssmlt.md)";
-  m.options = {mutationsPerPixelOption()};
+  m.options = {mutationsPerPixelOption(), directSamplesOption(), seedsOption()};
   addOptions(m.options, metropolisOptions());
   m.options.push_back(realOption("small-step",
                                  "Kelemen's largest small-step offset s2 of a primary sample (the smallest is s2 / 16)",
@@ -302,6 +399,7 @@ IntegratorModule pssmltModule() {
   m.addStats = [](RenderStats& to, const RenderStats& from) { addPssmltStats(pssmltStatsOf(to), pssmltStatsOf(from)); };
   m.scaleTimedPass = [](const RenderSettings& s, RenderSettings& pass) {
     chainOf(pass).mutationsPerPixel = std::max(1, int(std::lround(double(chainOf(s).mutationsPerPixel) * pass.spp / s.spp)));
+    scaleDirectSamples(s, pass);
   };
   return m;
 }
