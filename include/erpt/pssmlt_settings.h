@@ -1,7 +1,8 @@
-// Options and statistics of `--integrator pssmlt`: primary-sample-space MLT (Kelemen et al.
-// 2002) over the path tracer (docs/pssmlt.md). Its large-step probability, bootstrap and
-// chain count are MLT's options (MltSettings), its steps per pixel the chain integrators'
-// --mutations-per-pixel.
+// Options and statistics of `--integrator pssmlt` (primary-sample-space MLT, Kelemen et al.
+// 2002, over the path tracer or BDPT) and `--integrator mmlt` (multiplexed MLT, Hachisuka et
+// al. 2014, over BDPT's strategies): docs/pssmlt.md. Their large-step probability, bootstrap
+// and chain count are MLT's options (MltSettings), their steps per pixel the chain
+// integrators' --mutations-per-pixel.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +13,8 @@ struct PssmltSettings {
   // --small-step: Kelemen's s2, the largest offset of a small step in primary sample space
   // (s1 = s2 / 16); 1/64 as in the paper and in Mitsuba 0.6.
   double smallStep = 1.0 / 64;
+  // --sigma (mmlt): the standard deviation of a small step's normal offset; pbrt-v4's 0.01.
+  double sigma = 0.01;
 };
 
 struct PssmltStats {

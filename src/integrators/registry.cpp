@@ -8,13 +8,15 @@
 #include "integrators/mlt/mlt_integrator.h"
 #include "integrators/path/path_integrator.h"
 #include "integrators/pmc_er/pmc_er_integrator.h"
+#include "integrators/mmlt/mmlt_integrator.h"
 #include "integrators/pssmlt/pssmlt_integrator.h"
 
 namespace erpt {
 
 const std::vector<IntegratorModule>& integratorModules() {
   static const std::vector<IntegratorModule> modules = {pathModule(), directModule(), erptModule(), pmcErModule(),
-                                                        mltModule(), pssmltModule(), bdptModule()};
+                                                        mltModule(), pssmltModule(), mmltModule(),
+                                                        bdptModule()};
   return modules;
 }
 

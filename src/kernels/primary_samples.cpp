@@ -12,8 +12,9 @@ namespace {
 constexpr double kSmallStepRatio = 16;
 }  // namespace
 
-PrimarySamples::PrimarySamples(size_t chains, double smallStep, bool lightSubpaths)
-    : smallStep_(smallStep),
+PrimarySamples::PrimarySamples(size_t chains, double smallStep, bool lightSubpaths, StepKind kind)
+    : kind_(kind),
+      smallStep_(smallStep),
       logRatio_(std::log(kSmallStepRatio)),
       slots_(kSlotsPerStream * (lightSubpaths ? 2 : 1)),
       maskWords_(slots_ / 64),
@@ -29,11 +30,12 @@ uint32_t PrimarySamples::slotOf(uint64_t stream, uint32_t dim) const {
   if (light && slots_ == kSlotsPerStream) return slots_;
   const uint32_t base = light ? kSlotsPerStream : 0;
   if (dim == kDimLensX || dim == kDimLensY) return base + kSlotsPerStream - 2 + (dim - kDimLensX);
+  if (dim == kDimBdptStrategy) return light ? slots_ : kSlotsPerStream - 3;
   // The light subpath's emission sample takes its first slots, its bounces the next ones (its
   // dimensions 0 and 1, the camera's film position, are never read).
   if (light && dim >= kDimEmitPick && dim < kDimEmitPick + kEmitDims) return base + (dim - kDimEmitPick);
   const uint32_t local = light ? dim + kEmitDims : dim;
-  return local < kSlotsPerStream - 2 ? base + local : slots_;
+  return local < kSlotsPerStream - 3 ? base + local : slots_;
 }
 
 void PrimarySamples::propose(size_t c, uint64_t attemptKey, bool large) {
@@ -43,6 +45,13 @@ void PrimarySamples::propose(size_t c, uint64_t attemptKey, bool large) {
 }
 
 uint64_t PrimarySamples::smallStepOffset(uint64_t random) const {
+  if (kind_ == StepKind::Normal) {
+    // Box-Muller from two 32-bit halves: sigma z, z standard normal, taken modulo 1.
+    const double u1 = (double(random >> 32) + 0.5) * 0x1p-32, u2 = double(random & 0xffffffffu) * 0x1p-32;
+    const double offset = smallStep_ * std::sqrt(-2 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+    const double fraction = offset - std::floor(offset);  // in [0, 1]
+    return fraction >= 1 ? 0 : uint64_t(fraction * 0x1p64);
+  }
   // |offset| = s2 (s1 / s2)^u, u uniform in [0, 1) from 52 bits; the top bit is the sign.
   const double u = double((random >> 11) & ((uint64_t(1) << 52) - 1)) * 0x1p-52;
   const double offset = smallStep_ * std::exp(-logRatio_ * u);

@@ -10,7 +10,8 @@
 //   is uniform: they are drawn afresh whenever a proposal reads them (a Gibbs step, always
 //   valid).
 // - A small step moves every kept dimension by Kelemen's exponential offset, +-s2 (s1/s2)^u,
-//   s1 = s2 / 16, modulo 1 (symmetric); a large step draws every dimension afresh.
+//   s1 = s2 / 16, or by a normal offset, modulo 1 (both symmetric); a large step draws every
+//   dimension afresh.
 // - Dimensions past the kept slots (paths longer than the slots hold) are drawn afresh by
 //   every proposal: an independence proposal, also symmetric.
 // Every proposal's numbers are a pure function of the state and the attempt's stream key, so
@@ -25,15 +26,21 @@
 
 namespace erpt {
 
+// How a small step moves a kept number: Kelemen's exponential offset (pssmlt, Mitsuba) or a
+// normal one (mmlt, pbrt-v4), both symmetric, modulo 1.
+enum class StepKind { Kelemen, Normal };
+
 class PrimarySamples {
  public:
-  // Kept numbers per stream: film x and y, 15 bounces of 8 and the lens (camera); the emission
-  // sample, 15 bounces and the lens point of light tracing (a BDPT sample's light subpath).
+  // Kept numbers per stream: film x and y, 15 bounces of 8, mmlt's strategy and the lens
+  // (camera); the emission sample, 14 bounces and the lens point of light tracing (a BDPT
+  // sample's light subpath).
   static constexpr uint32_t kSlotsPerStream = 128;
 
-  // smallStep: Kelemen's s2, the largest offset of a small step. lightSubpaths: the chains
-  // replay BDPT samples, whose light subpaths draw from a stream of their own.
-  PrimarySamples(size_t chains, double smallStep, bool lightSubpaths = false);
+  // smallStep: Kelemen's s2, the largest offset of a small step, or the normal offset's
+  // standard deviation. lightSubpaths: the chains replay BDPT samples, whose light subpaths
+  // draw from a stream of their own.
+  PrimarySamples(size_t chains, double smallStep, bool lightSubpaths = false, StepKind kind = StepKind::Kelemen);
   size_t chains() const { return attemptKey_.size(); }
 
   // Chain c's next proposal draws from stream `attemptKey`: afresh everywhere (large) or from
@@ -47,7 +54,7 @@ class PrimarySamples {
   // Whether chain c's state keeps dimension `dim` of `stream` (tests).
   bool keeps(uint64_t stream, uint32_t dim) const;
 
-  // Kelemen's offset from 64 random bits, in units of 2^-64 (added modulo 2^64).
+  // A small step's offset from 64 random bits, in units of 2^-64 (added modulo 2^64).
   uint64_t smallStepOffset(uint64_t random) const;
 
  private:
@@ -58,6 +65,7 @@ class PrimarySamples {
     return (mask[c * maskWords_ + slot / 64] >> (slot % 64)) & 1;
   }
 
+  StepKind kind_;
   double smallStep_, logRatio_;
   uint32_t slots_, maskWords_;                        // per chain
   std::vector<uint64_t> current_, proposed_;          // chain c's slot s at c * slots_ + s

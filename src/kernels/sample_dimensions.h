@@ -20,6 +20,8 @@ inline uint32_t bounceDim(uint32_t depth, BounceDim use) { return 2 + kBounceDim
 // pick, then four numbers) apart from the bounces (bounceDim, as the camera subpath's) and, for
 // light tracing, the lens point (kDimLensX, kDimLensY).
 constexpr uint32_t kDimEmitPick = 0x7ffe0000u, kDimEmit1 = kDimEmitPick + 1, kEmitDims = 5;
+// Multiplexed MLT's choice of a BDPT strategy, a number of the camera subpath's stream.
+constexpr uint32_t kDimBdptStrategy = 0x7ffd0000u;
 // Replaying primary samples (primary_samples.h), a stream key is a chain's index, with this bit
 // set for its light subpath's numbers.
 constexpr uint64_t kLightSubpathStream = uint64_t(1) << 63;

@@ -235,7 +235,7 @@ py::dict statsOf(const RenderSettings& s, const RenderStats& stats) {
     d["in_place"] = inPlace;
     d["rejected"] = rejected;
   }
-  if (s.integrator == "pssmlt") {
+  if (s.integrator == "pssmlt" || s.integrator == "mmlt") {
     const PssmltStats& p = pssmltStatsOf(const_cast<RenderStats&>(stats));
     d["chains"] = p.chains;
     d["mutations"] = p.smallSteps + p.largeSteps;

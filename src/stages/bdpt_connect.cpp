@@ -93,8 +93,10 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
   const int maxDepth = ctx.stage.maxDepth;
   const int width = ctx.stage.width, height = ctx.height;
   const float ppu = camera.pixelsPerPlaneUnit();
+  int sampleS = -1, sampleT = -1;  // the one strategy of the sample being connected (mmlt), or -1: all
   auto keep = [&](int s, int t) {
-    return (ctx.onlyS < 0 || s == ctx.onlyS) && (ctx.onlyT < 0 || t == ctx.onlyT) &&
+    return (ctx.onlyS < 0 || s == ctx.onlyS) && (ctx.onlyT < 0 || t == ctx.onlyT) && (sampleS < 0 || s == sampleS) &&
+           (sampleT < 0 || t == sampleT) &&
            (maxDepth < 0 || s + t - 1 <= maxDepth) && s + t - 1 >= ctx.stage.minSegments;
   };
   auto weight = [&](const MisBuilder& mis, int s) { return ctx.unweighted ? 1.0f : bdptMisWeight(mis.path, s); };
@@ -143,6 +145,8 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
   std::vector<int32_t>& cameraIndex = scratch.cameraIndex;
 
   for (size_t i = range.begin; i < range.end; ++i) {
+    sampleS = paths.strategyS.empty() ? -1 : paths.strategyS[i];
+    sampleT = paths.strategyT.empty() ? -1 : paths.strategyT[i];
     if (paths.invalid[i]) {
       radiance[i] = Color(std::numeric_limits<float>::quiet_NaN());
       continue;

@@ -40,6 +40,10 @@ struct BdptSubpaths {
   std::vector<int32_t> lightEnd, cameraEnd;
   std::vector<float> lightNextEvent;  // next-event density of the light vertex from the light subpath's second vertex
   std::vector<uint8_t> invalid;       // a ray was refused: the sample is dropped
+  // Multiplexed MLT (mmlt) takes one strategy (s, t) per sample: its light subpath stops at s
+  // vertices, its camera subpath at t, and only that strategy is formed. Empty (every
+  // sample of a BDPT render): all strategies, subpaths as long as the walks go.
+  std::vector<int16_t> strategyS, strategyT;
   void resizeSamples(size_t n);
   // Room for `more` vertices after `used`.
   void reserveVertices(size_t more);

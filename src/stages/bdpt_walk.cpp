@@ -34,6 +34,14 @@ uint64_t lightSubpathKey(uint64_t seed, uint32_t pixel, uint32_t sample) {
   return sampleKey(mix64(seed ^ 0x4c6967687450617eull), pixel, sample);
 }
 
+namespace {
+// The most vertices sample i's subpath on `side` may have (-1: no limit): the strategy's s or t.
+int vertexCap(const BdptSubpaths& paths, bool light, size_t i) {
+  const std::vector<int16_t>& cap = light ? paths.strategyS : paths.strategyT;
+  return cap.empty() ? -1 : cap[i];
+}
+}  // namespace
+
 uint64_t lightSubpathStream(const StageContext& ctx, uint32_t pixel, uint32_t sample) {
   return ctx.replay ? (uint64_t(sample) | kLightSubpathStream) : lightSubpathKey(ctx.seed, pixel, sample);
 }
@@ -44,6 +52,8 @@ void BdptSubpaths::resizeSamples(size_t n) {
   lightEnd.assign(n, -1);
   cameraEnd.assign(n, -1);
   invalid.assign(n, 0);
+  strategyS.clear();
+  strategyT.clear();
   used = 0;
 }
 
@@ -63,7 +73,8 @@ void stageBdptStartLight(const BdptContext& ctx, BdptSubpaths& paths, BdptWalkQu
     const uint64_t key = lightSubpathStream(ctx.stage, paths.pixel[i], paths.sample[i]);
     const StageContext& c = ctx.stage;
     EmissionSample es;
-    if (ctx.stage.maxDepth == 0 ||
+    const int cap = vertexCap(paths, true, i);
+    if (ctx.stage.maxDepth == 0 || cap == 0 ||
         !lights.sampleEmission(drawDouble(c, key, kDimEmitPick), drawFloat(c, key, kDimEmit1),
                                drawFloat(c, key, kDimEmit1 + 1), drawFloat(c, key, kDimEmit1 + 2),
                                drawFloat(c, key, kDimEmit1 + 3), es))
@@ -88,7 +99,7 @@ void stageBdptStartLight(const BdptContext& ctx, BdptSubpaths& paths, BdptWalkQu
     walks.vertex[i] = int32_t(v);
     walks.depth[i] = 1;
     // A second light vertex needs paths of two segments or more.
-    if (ctx.stage.maxDepth >= 0 && ctx.stage.maxDepth < 2) continue;
+    if ((ctx.stage.maxDepth >= 0 && ctx.stage.maxDepth < 2) || (cap >= 0 && cap < 2)) continue;
     const bool onSurface = !es.infinite && !es.deltaPosition;  // leave the emitting surface
     setRay(rays, i, onSurface ? offsetOrigin(es.origin, es.normal, es.direction) : es.origin, es.direction, 0.0f,
            std::numeric_limits<float>::infinity());
@@ -120,7 +131,8 @@ void stageBdptStartCamera(const BdptContext& ctx, BdptSubpaths& paths, BdptWalkQ
     walks.pdfNext[i] = cameraDirectionDensity(camera, ctx.stage.width, ctx.height, normalize(rays.dirAt(i)));
     walks.vertex[i] = int32_t(v);
     walks.depth[i] = 1;
-    alive[i] = 1;
+    const int cap = vertexCap(paths, false, i);
+    alive[i] = cap < 0 || cap >= 2;
   }
 }
 
@@ -177,6 +189,8 @@ void stageBdptExtend(const BdptContext& ctx, BdptSide side, BdptSubpaths& paths,
     // the camera subpath no more than maxDepth + 1.
     const int maxDepth = ctx.stage.maxDepth;
     if (maxDepth >= 0 && int(depth) + (fromLight ? 1 : 0) >= maxDepth) continue;
+    const int cap = vertexCap(paths, fromLight, i);
+    if (cap >= 0 && int(depth) + 1 >= cap) continue;
     const uint64_t key = fromLight ? lightSubpathStream(ctx.stage, paths.pixel[i], paths.sample[i])
                                    : sampleStream(ctx.stage, paths.pixel[i], paths.sample[i]);
     const VertexBsdf bsdf = vertexBsdf(scene, x);

@@ -36,6 +36,7 @@ const std::map<std::string, std::map<std::string, std::string>> kBaseline = {
     {"pssmlt",
      {{"--define", "res=17"}, {"--mutations-per-pixel", "8"}, {"--chains", "16"}, {"--bootstrap", "2"},
       {"--direct-samples", "4"}}},
+    {"mmlt", {{"--define", "res=17"}, {"--mutations-per-pixel", "8"}, {"--chains", "16"}, {"--bootstrap", "2"}}},
 };
 
 enum class Effect { ChangesImage, KeepsImage, Accepted };
@@ -90,6 +91,7 @@ const OptionCase kOptions[] = {
     {"--bootstrap", "4", Effect::ChangesImage},
     {"--chains", "8", Effect::ChangesImage},
     {"--small-step", "0.1", Effect::ChangesImage},
+    {"--sigma", "0.1", Effect::ChangesImage},
     {"--seeds", "bdpt", Effect::ChangesImage},
     {"--bidir-mutation", "0.5", Effect::ChangesImage},
     {"--bdpt-s", "2", Effect::ChangesImage},
@@ -153,7 +155,7 @@ TEST_P(OptionsTable, EveryOptionMeansSomethingOrIsRefused) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Cli, OptionsTable, ::testing::Values("path", "direct", "erpt", "pmc-er", "mlt", "pssmlt", "bdpt"),
+INSTANTIATE_TEST_SUITE_P(Cli, OptionsTable, ::testing::Values("path", "direct", "erpt", "pmc-er", "mlt", "pssmlt", "mmlt", "bdpt"),
                          [](const auto& info) {
                            std::string name = info.param;
                            name.erase(std::remove(name.begin(), name.end(), '-'), name.end());

@@ -189,6 +189,12 @@ const std::vector<Sampler>& samplers() {
          chainOf(s).directSamples = 4;
          mltOf(s).bootstrapSpp = 4;
        }},
+      {"Mmlt", kSphereLight | kRectangleLight | kClosedFurnace,  // bounded path lengths only
+       [](RenderSettings& s) {
+         s.integrator = "mmlt", s.spp = 1;
+         chainOf(s).mutationsPerPixel = 64;
+         mltOf(s).bootstrapSpp = 4;
+       }},
       {"MltBdptSeeds", 15,
        [](RenderSettings& s) {
          chains(s, "mlt", SeedSampler::Bdpt);

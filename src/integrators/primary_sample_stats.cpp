@@ -1,7 +1,7 @@
-// PSSMLT's statistics after a render: the bootstrap, the chains, acceptance by step kind.
+// pssmlt's and mmlt's statistics after a render: the bootstrap, the chains, acceptance by step kind.
 #include <cstdio>
 
-#include "integrators/pssmlt/pssmlt_integrator.h"
+#include "integrators/primary_sample_mlt.h"
 
 namespace erpt {
 
@@ -18,16 +18,16 @@ void addPssmltStats(PssmltStats& to, const PssmltStats& from) {
   to.chainSeconds += from.chainSeconds;
 }
 
-void printPssmltSummary(const RenderStats& stats) {
+void printPrimarySampleSummary(const char* name, const RenderStats& stats) {
   const PssmltStats& p = pssmltStatsOf(stats);
   const auto share = [](uint64_t part, uint64_t whole) { return whole ? 100.0 * double(part) / double(whole) : 0.0; };
   const uint64_t steps = p.smallSteps + p.largeSteps;
-  std::fprintf(stderr, "pssmlt: b %.6g (bootstrap: %llu samples, %.2f s)\n", p.b, (unsigned long long)p.bootstrapSamples,
+  std::fprintf(stderr, "%s: b %.6g (bootstrap: %llu samples, %.2f s)\n", name, p.b, (unsigned long long)p.bootstrapSamples,
                p.bootstrapSeconds);
   std::fprintf(stderr,
-               "pssmlt: %llu chains x %llu steps, %llu steps (%.2f M/s in %.2f s); accepted: small steps %.1f%%, large "
+               "%s: %llu chains x %llu steps, %llu steps (%.2f M/s in %.2f s); accepted: small steps %.1f%%, large "
                "steps %.1f%%; %llu invalid proposals\n",
-               (unsigned long long)p.chains, (unsigned long long)p.chainLength, (unsigned long long)steps,
+               name, (unsigned long long)p.chains, (unsigned long long)p.chainLength, (unsigned long long)steps,
                p.chainSeconds > 0 ? double(steps) / p.chainSeconds * 1e-6 : 0.0, p.chainSeconds,
                share(p.smallAccepted, p.smallSteps), share(p.largeAccepted, p.largeSteps),
                (unsigned long long)p.invalidProposals);
