@@ -20,6 +20,7 @@
 #include "io/error_heatmap.h"
 #include "python_plot.h"
 #include "erpt/image_metrics.h"
+#include "erpt/pssmlt_settings.h"
 
 namespace erpt::cli {
 
@@ -215,7 +216,7 @@ int runCompare(const CompareArgs& a) {
     row.seconds = row.curveSeconds.empty() ? stats.seconds : row.curveSeconds.back();
     row.spp = stats.spp;
     row.passes = stats.passes;
-    row.mutations = chainStatsOf(stats).mutations;
+    row.mutations = chainStatsOf(stats).mutations + pssmltStatsOf(stats).smallSteps + pssmltStatsOf(stats).largeSteps;
     row.error = compareImages(image, reference);
     const fs::path out = fs::path(a.outDir) / fileStem(name);
     writeImageAtomic(out.string() + ".exr", image);

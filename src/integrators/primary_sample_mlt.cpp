@@ -268,8 +268,10 @@ void validatePrimarySampleMlt(const RenderSettings& s, bool multiplexed) {
     throw UsageError("--chains " + std::to_string(m.chains) + " is more than " + name + "'s " +
                      std::to_string(kMaxPssmltChains) + " (each chain keeps a vector of 2 to 4 KB)");
   const double pixels = double(s.width) * double(s.height);
-  if (double(std::max(m.bootstrapSpp, 1)) * pixels > kMaxBootstrapSamples)
-    throw UsageError("--bootstrap x pixels gives more than 2^30 bootstrap samples");
+  const double lengths = multiplexed ? mmltLongestPath(s) : 1;
+  if (double(std::max(m.bootstrapSpp, 1)) * pixels * lengths > kMaxBootstrapSamples)
+    throw UsageError("--bootstrap x pixels" + std::string(multiplexed ? " x path lengths (--max-depth)" : "") +
+                     " gives more than 2^30 bootstrap samples");
   if (multiplexed && s.maxDepth > kMmltMaxLongestPath)
     throw UsageError("--max-depth " + std::to_string(s.maxDepth) + " is more than mmlt's " +
                      std::to_string(kMmltMaxLongestPath) + " segments (a chain keeps its path length in a byte)");
@@ -292,14 +294,14 @@ RgbImage renderPrimarySampleMlt(const Scene& scene, const RenderSettings& s, Ren
   PoolTimes times(stats.stages, setup.pool.threads());
   std::atomic<uint64_t> rays{0}, invalid{0};
 
-  // 1. The bootstrap (mmlt: its samples shared equally by the path lengths, 1 to the longest).
+  // 1. The bootstrap (mmlt: as many samples for each path length, 1 to the longest, as
+  // pbrt-v4's: a length with few samples gets b_k, and so its share of the chains, from a
+  // handful of paths).
   const auto bootStart = std::chrono::steady_clock::now();
-  const size_t bootSamples =
-      size_t(bootstrapSamplesPerPixel(m, double(pixels), mutationsPerPixel,
-                                      sampler == SeedSampler::Bdpt ? kBdptSampleSteps : kPathSampleSteps)) *
-      pixels;
+  // What a bootstrap sample costs in chain steps: mmlt's is one strategy, as a step's.
+  const double sampleSteps = multiplexed ? 1.0 : sampler == SeedSampler::Bdpt ? kBdptSampleSteps : kPathSampleSteps;
+  const size_t perLength = size_t(bootstrapSamplesPerPixel(m, double(pixels), mutationsPerPixel, sampleSteps)) * pixels;
   const int lengths = multiplexed ? mmltLongestPath(s) : 1;
-  const size_t perLength = (bootSamples + size_t(lengths) - 1) / size_t(lengths);
   const size_t bootCount = perLength * size_t(lengths);
   std::vector<uint8_t> bootSegments;
   if (multiplexed)
