@@ -298,9 +298,10 @@ RgbImage renderPrimarySampleMlt(const Scene& scene, const RenderSettings& s, Ren
   // pbrt-v4's: a length with few samples gets b_k, and so its share of the chains, from a
   // handful of paths).
   const auto bootStart = std::chrono::steady_clock::now();
-  // What a bootstrap sample costs in chain steps: mmlt's is one strategy, as a step's.
-  const double sampleSteps = multiplexed ? 1.0 : sampler == SeedSampler::Bdpt ? kBdptSampleSteps : kPathSampleSteps;
-  const size_t perLength = size_t(bootstrapSamplesPerPixel(m, double(pixels), mutationsPerPixel, sampleSteps)) * pixels;
+  // A bootstrap sample costs what a chain step does (the same sampler, the same strategies),
+  // so MLT's rule gives as many per pixel as the chains take steps, at most 100,000 in all
+  // (per length for mmlt): Mitsuba's and pbrt-v4's size.
+  const size_t perLength = size_t(bootstrapSamplesPerPixel(m, double(pixels), mutationsPerPixel, 1.0)) * pixels;
   const int lengths = multiplexed ? mmltLongestPath(s) : 1;
   const size_t bootCount = perLength * size_t(lengths);
   std::vector<uint8_t> bootSegments;
