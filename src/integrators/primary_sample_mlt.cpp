@@ -258,7 +258,7 @@ RgbImage renderDirectPart(const Scene& scene, const RenderSettings& s, RenderSta
 
 }  // namespace
 
-int mmltLongestPath(const RenderSettings& s) { return s.maxDepth >= 1 ? s.maxDepth : kMmltDefaultLongestPath; }
+int mmltLongestPath(const RenderSettings& s) { return s.maxDepth >= 0 ? s.maxDepth : kMmltDefaultLongestPath; }
 
 void validatePrimarySampleMlt(const RenderSettings& s, bool multiplexed) {
   const std::string name = multiplexed ? "mmlt" : "pssmlt";

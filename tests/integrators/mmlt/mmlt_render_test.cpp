@@ -46,6 +46,18 @@ TEST(Mmlt, SameImageForAnyThreadCount) {
   EXPECT_GT(p.largeAccepted, 0u);
 }
 
+// --max-depth 0 means no path at all, as for every integrator (6 segments is only the default
+// of an unbounded depth).
+TEST(Mmlt, MaxDepthZeroRendersNothing) {
+  RenderSettings s = mmltSettings(4);
+  s.width = 19;
+  s.height = 13;
+  s.maxDepth = 0;
+  const RgbImage image = test::renderImage(defaultScene(), s);
+  ASSERT_EQ(image.pixels.size(), 19u * 13u);
+  for (const Color& c : image.pixels) ASSERT_TRUE(c.x == 0 && c.y == 0 && c.z == 0);
+}
+
 // Block by block against the path tracer, paths of up to 6 segments: every length's chains
 // and every strategy, weighted by the number of strategies. With 2048 chains the block means
 // were heavy-tailed (mean z^2 1.5-1.8 with 16 renders); 8192 shorter chains and 24 renders.
