@@ -24,7 +24,7 @@ if [ "${1:-}" != "--release-only" ]; then
   # build is clang's, and its Fuzz.* tests are 10 s libFuzzer runs of each fuzz target
   # (scripts/fuzz.sh runs them for longer). The long statistical renders of the path tracer
   # (against the references and the scalar tracer), ERPT, PMC-ER, MLT, BDPT (and the others with
-  # its seeds), the splatting films and exact-vs-tessellated spheres run in the Release suite only (their code paths are covered by
+  # its seeds), PSSMLT, MMLT, PMC-ER's time budgets and outlier check, the splatting films and exact-vs-tessellated spheres run in the Release suite only (their code paths are covered by
   # the stage, measure, determinism, closed-form and CLI tests here), and so does the table of
   # every integrator x option (200 CLI renders; the option code it checks is plain parsing).
   # intercept_tls_get_addr=0: clang 14's LeakSanitizer guesses the extent of a dlopen'ed
@@ -34,7 +34,7 @@ if [ "${1:-}" != "--release-only" ]; then
   # root of the leak scan: that can only report more leaks, never hide one of ours.
   step "sanitizer tests" bash -c 'cd build-sanitize && ASAN_OPTIONS=detect_leaks=1:intercept_tls_get_addr=0 \
     LSAN_OPTIONS=suppressions="$PWD/../tests/lsan.supp" ctest --output-on-failure -j2 \
-    -E "^Statistical(Erpt|Pmc|Mlt|Pssmlt|Film|Resume|Path|PathVsScalar|Bdpt|BdptSeeds|Strategies|ClosedFormPrecision)\.|^StatisticalTable/|^StatisticalExactSphere\.ExactAndTessellated|^Cli/OptionsTable\."'
+    -E "^Statistical(Erpt|Pmc|PmcTimeBudget|Mlt|Pssmlt|Mmlt|Outliers|Film|Resume|Path|PathVsScalar|Bdpt|BdptSeeds|Strategies|ClosedFormPrecision)\.|^StatisticalTable/|^StatisticalExactSphere\.ExactAndTessellated|^Cli/OptionsTable\."'
   # ThreadSanitizer on the multi-threaded code: the stage kernels and every test that renders
   # one scene on 1 and 2 threads (path, direct, seed store, splat film, erpt, pmc-er, mlt, split
   # renders). In this build the parallel loops run on std::threads (src/core/parallel.cpp).

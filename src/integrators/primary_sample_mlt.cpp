@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <cmath>
 #include <mutex>
 #include <numeric>
@@ -279,41 +280,93 @@ void validatePrimarySampleMlt(const RenderSettings& s, bool multiplexed) {
   if (s.resume || s.onPasses) throw UsageError(name + " does not write checkpoints or partial images");
 }
 
-RgbImage renderPrimarySampleMlt(const Scene& scene, const RenderSettings& s, RenderStats& stats, bool multiplexed) {
+namespace {
+
+// The bootstrap: samples of fresh primary vectors drawn from `seed`'s stream, their values
+// and (mmlt) path lengths, and b. A time-budgeted render takes it once and shares it among
+// its passes: each pass resamples its chains' starts from it anew, so each is unbiased on its
+// own (docs/pssmlt.md), and the sampling cost of b is paid once.
+struct PrimarySampleBootstrap {
+  uint64_t seed = 0;
+  std::vector<double> values;
+  std::vector<uint8_t> segments;  // mmlt: sample i's path length in segments
+  size_t perLength = 0;           // samples of each path length (pssmlt: all)
+  double b = 0;                   // the sum over the path lengths of each one's mean value
+  double seconds = 0;
+  uint64_t rays = 0, invalid = 0;
+};
+
+// pssmlt with --direct-samples: a direct pass renders paths of one and two segments.
+bool hasDirectPass(const RenderSettings& s, bool multiplexed) { return !multiplexed && chainOf(s).directSamples > 0; }
+
+// 1. The bootstrap (mmlt: as many samples for each path length, 1 to the longest, as
+// pbrt-v4's: a length with few samples gets b_k, and so its share of the chains, from a
+// handful of paths). A bootstrap sample costs what a chain step does (the same sampler, the
+// same strategies), so MLT's rule gives as many per pixel as the chains take steps, at most
+// 100,000 in all (per length for mmlt): Mitsuba's and pbrt-v4's size.
+PrimarySampleBootstrap takeBootstrap(const RenderSetup& setup, const RenderSettings& s, bool multiplexed,
+                                     StageTimes& stages) {
+  const auto start = std::chrono::steady_clock::now();
+  PrimarySampleBootstrap boot;
+  boot.seed = s.seed;
+  const size_t pixels = size_t(s.width) * size_t(s.height);
+  boot.perLength =
+      size_t(bootstrapSamplesPerPixel(mltOf(s), double(pixels), chainOf(s).mutationsPerPixel, 1.0)) * pixels;
+  const int lengths = multiplexed ? mmltLongestPath(s) : 1;
+  if (multiplexed)
+    for (int k = 1; k <= lengths; ++k) boot.segments.insert(boot.segments.end(), boot.perLength, uint8_t(k));
+  PoolTimes times(stages, setup.pool.threads());
+  std::atomic<uint64_t> rays{0}, invalid{0};
+  const SeedSampler sampler = multiplexed ? SeedSampler::Bdpt : chainOf(s).seeds;
+  boot.values = runBootstrap(setup, sampler, s.seed, boot.perLength * size_t(lengths),
+                             multiplexed ? &boot.segments : nullptr, times, rays, invalid);
+  boot.b = std::accumulate(boot.values.begin(), boot.values.end(), 0.0) / double(boot.perLength);
+  boot.rays = rays, boot.invalid = invalid;
+  boot.seconds = secondsSince(start);
+  return boot;
+}
+
+// The bootstrap's statistics, added to a render's.
+void addBootstrapStats(const PrimarySampleBootstrap& boot, RenderStats& stats) {
+  PssmltStats& ps = pssmltStatsOf(stats);
+  ps.b = boot.b;
+  ps.bootstrapSamples += boot.values.size();
+  ps.bootstrapSeconds += boot.seconds;
+  ps.rays += boot.rays;
+  stats.samples += boot.values.size();
+  stats.rays += boot.rays;
+  stats.invalidSamples += boot.invalid;
+}
+
+// The bootstrap's and the chains' paths then have three segments or more.
+void keepOffDirectPaths(RenderSetup& setup, const RenderSettings& s, bool multiplexed) {
+  if (hasDirectPass(s, multiplexed)) setup.ctx.minSegments = 3;
+}
+
+// The render after its bootstrap: `known`, or its own when null.
+RgbImage renderWithBootstrap(const Scene& scene, const RenderSettings& s, RenderStats& stats, bool multiplexed,
+                             const PrimarySampleBootstrap* known) {
   validatePrimarySampleMlt(s, multiplexed);
   PssmltStats& ps = pssmltStatsOf(stats);
   const MltSettings& m = mltOf(s);
   const SeedSampler sampler = multiplexed ? SeedSampler::Bdpt : chainOf(s).seeds;
-  const RgbImage direct =
-      !multiplexed && chainOf(s).directSamples > 0 ? renderDirectPart(scene, s, stats) : RgbImage{};
+  const RgbImage direct = hasDirectPass(s, multiplexed) ? renderDirectPart(scene, s, stats) : RgbImage{};
   RenderSetup setup(scene, s);
-  // With a direct pass the chains' paths have three segments or more.
-  if (!direct.pixels.empty()) setup.ctx.minSegments = 3;
+  keepOffDirectPaths(setup, s, multiplexed);
   const size_t pixels = size_t(s.width) * size_t(s.height);
   const double mutationsPerPixel = chainOf(s).mutationsPerPixel;
   PoolTimes times(stats.stages, setup.pool.threads());
-  std::atomic<uint64_t> rays{0}, invalid{0};
-
-  // 1. The bootstrap (mmlt: as many samples for each path length, 1 to the longest, as
-  // pbrt-v4's: a length with few samples gets b_k, and so its share of the chains, from a
-  // handful of paths).
-  const auto bootStart = std::chrono::steady_clock::now();
-  // A bootstrap sample costs what a chain step does (the same sampler, the same strategies),
-  // so MLT's rule gives as many per pixel as the chains take steps, at most 100,000 in all
-  // (per length for mmlt): Mitsuba's and pbrt-v4's size.
-  const size_t perLength = size_t(bootstrapSamplesPerPixel(m, double(pixels), mutationsPerPixel, 1.0)) * pixels;
-  const int lengths = multiplexed ? mmltLongestPath(s) : 1;
-  const size_t bootCount = perLength * size_t(lengths);
-  std::vector<uint8_t> bootSegments;
-  if (multiplexed)
-    for (int k = 1; k <= lengths; ++k) bootSegments.insert(bootSegments.end(), perLength, uint8_t(k));
-  const std::vector<double> bootValues =
-      runBootstrap(setup, sampler, s.seed, bootCount, multiplexed ? &bootSegments : nullptr, times, rays, invalid);
-  // b: the sum over the path lengths of each one's mean (one length for pssmlt).
-  const double b = std::accumulate(bootValues.begin(), bootValues.end(), 0.0) / double(perLength);
+  std::atomic<uint64_t> rays{0};
+  PrimarySampleBootstrap own;
+  if (!known) {
+    own = takeBootstrap(setup, s, multiplexed, stats.stages);
+    addBootstrapStats(own, stats);
+    known = &own;
+  }
+  const PrimarySampleBootstrap& boot = *known;
+  const double b = boot.b;
   ps.b = b;
-  ps.bootstrapSamples = bootCount;
-  stats.samples = bootCount;
+  const std::vector<uint8_t>& bootSegments = boot.segments;
   if (s.progress) s.progress(0.05);
 
   // 2. The chains' starts: bootstrap samples resampled by their value, replayed into the chains.
@@ -325,7 +378,7 @@ RgbImage renderPrimarySampleMlt(const Scene& scene, const RenderSettings& s, Ren
   GroupCounts total;
   if (b > 0) {
     const std::vector<size_t> picks =
-        systematicPicks(bootValues, chains, uniformDouble(streamKey(s.seed, kResampleStream, 0), 0));
+        systematicPicks(boot.values, chains, uniformDouble(streamKey(s.seed, kResampleStream, 0), 0));
     PrimarySamples primary(chains, multiplexed ? pssmltOf(s).sigma : pssmltOf(s).smallStep,
                            sampler == SeedSampler::Bdpt, multiplexed ? StepKind::Normal : StepKind::Kelemen);
     ChainSamples current(chains);
@@ -339,7 +392,6 @@ RgbImage renderPrimarySampleMlt(const Scene& scene, const RenderSettings& s, Ren
     std::vector<GroupCounts> counts(groups);
     PerThread<GroupScratch> local;
     std::mutex progressMutex;
-    ps.bootstrapSeconds = secondsSince(bootStart);
     const auto chainStart = std::chrono::steady_clock::now();
 
     // Kelemen's weights (pssmlt) or plain expected values (mmlt, as pbrt-v4).
@@ -354,7 +406,7 @@ RgbImage renderPrimarySampleMlt(const Scene& scene, const RenderSettings& s, Ren
       for (size_t group = range.begin; group < range.end; ++group) {
         const size_t first = group * kGroupChains, n = std::min(kGroupChains, chains - first);
         GroupCounts& count = counts[group];
-        for (size_t k = 0; k < n; ++k) primary.propose(first + k, bootstrapKey(s.seed, picks[first + k]), true);
+        for (size_t k = 0; k < n; ++k) primary.propose(first + k, bootstrapKey(boot.seed, picks[first + k]), true);
         rays += traceProposals(setup, sampler, primary, first, n, segments, g, taskTimes);
         for (size_t k = 0; k < n; ++k) {
           primary.accept(first + k);
@@ -411,17 +463,15 @@ RgbImage renderPrimarySampleMlt(const Scene& scene, const RenderSettings& s, Ren
       total.large += c.large, total.largeAccepted += c.largeAccepted;
       total.invalid += c.invalid, total.steps += c.steps;
     }
-  } else {
-    ps.bootstrapSeconds = secondsSince(bootStart);
   }
   ps.chains = chains;
   ps.chainLength = length;
   ps.smallSteps = total.small, ps.smallAccepted = total.smallAccepted;
   ps.largeSteps = total.large, ps.largeAccepted = total.largeAccepted;
   ps.invalidProposals = total.invalid;
-  ps.rays = rays;
+  ps.rays += rays;
   stats.rays += rays;
-  stats.invalidSamples += invalid + total.invalid;
+  stats.invalidSamples += total.invalid;
 
   // 3. The image: every step deposited luminance b in all; the mean over the steps per pixel.
   RgbImage image;
@@ -436,6 +486,24 @@ RgbImage renderPrimarySampleMlt(const Scene& scene, const RenderSettings& s, Ren
   if (stepsDone > 0) film.addTo(image, double(stepsDone) / double(pixels));
   for (size_t i = 0; i < direct.pixels.size(); ++i) image.pixels[i] += direct.pixels[i];
   return image;
+}
+
+}  // namespace
+
+RgbImage renderPrimarySampleMlt(const Scene& scene, const RenderSettings& s, RenderStats& stats, bool multiplexed) {
+  return renderWithBootstrap(scene, s, stats, multiplexed, nullptr);
+}
+
+PassRenderer primarySampleMltTimedPasses(const Scene& scene, const RenderSettings& whole, RenderStats& stats,
+                                         bool multiplexed) {
+  validatePrimarySampleMlt(whole, multiplexed);
+  RenderSetup setup(scene, whole);
+  keepOffDirectPaths(setup, whole, multiplexed);
+  auto boot = std::make_shared<const PrimarySampleBootstrap>(takeBootstrap(setup, whole, multiplexed, stats.stages));
+  addBootstrapStats(*boot, stats);
+  return [boot, multiplexed](const Scene& sc, const RenderSettings& pass, RenderStats& ps) {
+    return renderWithBootstrap(sc, pass, ps, multiplexed, boot.get());
+  };
 }
 
 }  // namespace erpt

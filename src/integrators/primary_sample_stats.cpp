@@ -6,7 +6,7 @@
 namespace erpt {
 
 void addPssmltStats(PssmltStats& to, const PssmltStats& from) {
-  to.b = from.b;  // each pass estimates b on its own; the last one is shown
+  to.b = from.b;  // the passes of a timed render share one bootstrap
   to.bootstrapSamples += from.bootstrapSamples;
   to.chains += from.chains;
   to.chainLength = from.chainLength;

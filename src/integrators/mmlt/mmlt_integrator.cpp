@@ -28,6 +28,9 @@ IntegratorModule mmltModule() {
   m.render = [](const Scene& scene, const RenderSettings& s, RenderStats& stats) {
     return renderPrimarySampleMlt(scene, s, stats, true);
   };
+  m.timedPasses = [](const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+    return primarySampleMltTimedPasses(scene, s, stats, true);
+  };
   m.printSummary = [](const RenderStats& stats) { printPrimarySampleSummary("mmlt", stats); };
   m.addStats = [](RenderStats& to, const RenderStats& from) { addPssmltStats(pssmltStatsOf(to), pssmltStatsOf(from)); };
   m.scaleTimedPass = [](const RenderSettings& s, RenderSettings& pass) {
