@@ -225,13 +225,23 @@ std::vector<double> runBootstrap(const RenderSetup& setup, SeedSampler sampler, 
 }
 
 // The chains' current samples, by chain: their splats and target value f.
+// A rejected proposal leaves the current sample where it is, so its deposits only add to one
+// weight (`pending`), splatted once when the chain leaves the sample or stops: one splat per
+// accepted sample instead of one per step.
 struct ChainSamples {
   std::vector<std::vector<Splat>> splats;
-  std::vector<double> value;
-  explicit ChainSamples(size_t n) : splats(n), value(n) {}
+  std::vector<double> value, pending;
+  explicit ChainSamples(size_t n) : splats(n), value(n), pending(n) {}
   void take(size_t c, const ProposalSamples& p, size_t k) {
     splats[c].assign(p.splats.begin() + p.begin[k], p.splats.begin() + p.begin[k + 1]);
     value[c] = p.value[k];
+  }
+  // Deposits chain c's pending weight at its current sample.
+  template <class Deposit>
+  void flush(size_t c, const Deposit& deposit) {
+    if (pending[c] > 0)
+      for (const Splat& sp : splats[c]) deposit(sp.x, sp.y, sp.c, pending[c]);
+    pending[c] = 0;
   }
 };
 
@@ -435,8 +445,7 @@ RgbImage renderWithBootstrap(const Scene& scene, const RenderSettings& s, Render
             // Expected values with Kelemen's weights (docs/pssmlt.md): the chain's estimate and
             // the large steps' own Monte Carlo estimate, combined by the balance heuristic.
             const double kept = (1 - a) / (f / b + pLarge), moved = (a + (large ? largeWeight : 0)) / (proposed / b + pLarge);
-            if (f > 0 && kept > 0)
-              for (const Splat& sp : current.splats[c]) deposit(sp.x, sp.y, sp.c, kept);
+            if (f > 0 && kept > 0) current.pending[c] += kept;
             if (proposed > 0 && moved > 0)
               for (uint32_t i = p.begin[k]; i < p.begin[k + 1]; ++i) deposit(p.splats[i].x, p.splats[i].y, p.splats[i].c, moved);
             const bool accepted = uniformDouble(key, kDimAcceptCoin) < a;
@@ -444,6 +453,7 @@ RgbImage renderWithBootstrap(const Scene& scene, const RenderSettings& s, Render
             (large ? count.largeAccepted : count.smallAccepted) += accepted;
             if (!accepted) continue;
             primary.accept(c);
+            current.flush(c, deposit);
             current.take(c, p, k);
           }
           taskTimes.add("accept and deposit", secondsSince(accepting));
@@ -454,6 +464,7 @@ RgbImage renderWithBootstrap(const Scene& scene, const RenderSettings& s, Render
             s.progress(0.05 + 0.95 * double(done) / (double(chains) * double(length)));
           }
         }
+        for (size_t k = 0; k < n; ++k) current.flush(first + k, deposit);
       }
       times.add(taskTimes);
     });

@@ -63,9 +63,8 @@ uint64_t PrimarySamples::bits(uint64_t stream, uint32_t dim) {
   const size_t c = chainOf(stream);
   // The light subpath's numbers come from another stream of the attempt than the camera's.
   const uint64_t key = (stream & kLightSubpathStream) ? mix64(attemptKey_[c] ^ kLightSubpathStream) : attemptKey_[c];
-  const uint64_t fresh = uniformBits(key, dim);
   const uint32_t slot = slotOf(stream, dim);
-  if (slot >= slots_) return fresh;
+  if (slot >= slots_) return uniformBits(key, dim);
   const size_t at = c * slots_ + slot;
   uint64_t& word = proposedMask_[c * maskWords_ + slot / 64];
   const uint64_t bit = uint64_t(1) << (slot % 64);
@@ -73,7 +72,8 @@ uint64_t PrimarySamples::bits(uint64_t stream, uint32_t dim) {
   // A small step moves a kept value; the rest are drawn afresh (see the header). The offset's
   // random bits come from another dimension of the attempt's stream than the fresh value's.
   const bool kept = !large_[c] && has(currentMask_, c, slot);
-  const uint64_t value = kept ? current_[at] + smallStepOffset(uniformBits(key, dim ^ 0x80000000u)) : fresh;
+  const uint64_t value =
+      kept ? current_[at] + smallStepOffset(uniformBits(key, dim ^ 0x80000000u)) : uniformBits(key, dim);
   proposed_[at] = value;
   word |= bit;
   return value;
