@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/rng.h"
+#include "kernels/normal_ziggurat.h"
 #include "kernels/sample_dimensions.h"
 
 namespace erpt {
@@ -46,9 +47,8 @@ void PrimarySamples::propose(size_t c, uint64_t attemptKey, bool large) {
 
 uint64_t PrimarySamples::smallStepOffset(uint64_t random) const {
   if (kind_ == StepKind::Normal) {
-    // Box-Muller from two 32-bit halves: sigma z, z standard normal, taken modulo 1.
-    const double u1 = (double(random >> 32) + 0.5) * 0x1p-32, u2 = double(random & 0xffffffffu) * 0x1p-32;
-    const double offset = smallStep_ * std::sqrt(-2 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+    // sigma z, z standard normal (kernels/normal_ziggurat.h), taken modulo 1.
+    const double offset = smallStep_ * standardNormalFromBits(random);
     const double fraction = offset - std::floor(offset);  // in [0, 1]
     return fraction >= 1 ? 0 : uint64_t(fraction * 0x1p64);
   }

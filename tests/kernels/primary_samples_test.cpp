@@ -2,6 +2,8 @@
 // and the distribution of Kelemen's small-step offsets.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <vector>
 
@@ -108,6 +110,42 @@ TEST(PrimarySamples, SmallStepOffsetsAreLogUniformAndSymmetric) {
   const double expected = double(kDraws) / kBins;
   for (int c : bins) chi2 += (c - expected) * (c - expected) / expected;
   EXPECT_LT(chi2, 43.8) << "chi-square with 19 degrees of freedom, p = 0.001";
+  EXPECT_LT(std::abs(positive - kDraws / 2) / std::sqrt(kDraws / 4.0), 4.0) << positive << " positive offsets";
+}
+
+// mmlt's normal offsets (the ziggurat, kernels/normal_ziggurat.h): sigma z with z standard
+// normal. Chi-square of z over 24 bins equally likely under the normal (their edges from the
+// inverse of erfc), the tail beyond the ziggurat's base layer (|z| > 3.44) in its own bin, and
+// the sign a fair coin, so the step is symmetric.
+TEST(PrimarySamples, NormalOffsetsAreNormalAndSymmetric) {
+  const double sigma = 0.01;
+  const PrimarySamples p(1, sigma, false, StepKind::Normal);
+  constexpr int kBins = 24, kDraws = 400000;
+  // Bin edges of |z|: P(|z| < e_k) = k / kBins, by bisection on erf.
+  std::vector<double> edges;
+  for (int k = 1; k < kBins; ++k) {
+    double lo = 0, hi = 10;
+    for (int it = 0; it < 100; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (std::erf(mid / std::sqrt(2.0)) < double(k) / kBins ? lo : hi) = mid;
+    }
+    edges.push_back(lo);
+  }
+  std::vector<int> bins(kBins, 0);
+  int positive = 0, tail = 0;
+  for (int i = 0; i < kDraws; ++i) {
+    const double z = circularOffset(0, p.smallStepOffset(uniformBits(78, uint32_t(i)))) / sigma;
+    positive += z > 0;
+    tail += std::abs(z) > 3.442619855899;
+    ++bins[size_t(std::upper_bound(edges.begin(), edges.end(), std::abs(z)) - edges.begin())];
+  }
+  double chi2 = 0;
+  const double expected = double(kDraws) / kBins;
+  for (int c : bins) chi2 += (c - expected) * (c - expected) / expected;
+  EXPECT_LT(chi2, 49.7) << "chi-square with 23 degrees of freedom, p = 0.001";
+  // P(|z| > 3.4426) = 5.76e-4: the base layer's tail is drawn at its rate.
+  const double tailExpected = kDraws * std::erfc(3.442619855899 / std::sqrt(2.0));
+  EXPECT_LT(std::abs(tail - tailExpected) / std::sqrt(tailExpected), 4.0) << tail << " beyond the base layer";
   EXPECT_LT(std::abs(positive - kDraws / 2) / std::sqrt(kDraws / 4.0), 4.0) << positive << " positive offsets";
 }
 
