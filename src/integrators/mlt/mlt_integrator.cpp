@@ -21,8 +21,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <functional>
-#include <memory>
 #include <cmath>
 #include <stdexcept>
 #include <unordered_map>
@@ -171,184 +169,97 @@ void validateMltSettings(const RenderSettings& s) {
   if (s.resume || s.onPasses) throw UsageError("mlt does not write checkpoints or partial images yet");
 }
 
-namespace {
+RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
+  validateMltSettings(s);
+  MltStats& ms = mltStatsOf(stats);
+  const ChainOptions& options = chainOf(s);
+  StepSettings step = stepSettingsOf(options);
+  step.expectedDeposit = true;  // MLT's expected-value splatting of current and proposed paths
+  const RgbImage direct = renderDirectPass(scene, s, stats);
 
-// One contribution the chains hold, named by its bootstrap sample and its (vertex count,
-// technique), which name it within its sample.
-struct BootstrapOrigin {
-  uint64_t sample;
-  uint16_t vertices;
-  uint8_t technique;  // the seed's explicitLight
-};
-
-// The bootstrap: b, the energy by length, the contributions the chains hold (resampled for
-// their starts) and the image of those they do not. A time-budgeted render takes it once and
-// its passes share it; each resamples its own starts, which keeps each pass unbiased
-// (docs/mlt.md, "Time budgets").
-struct MltBootstrap {
-  RenderSettings settings;  // its samples per pixel and stream: the starts' samples are traced again
-  std::vector<float> energies;
-  std::vector<BootstrapOrigin> origins;
-  double energyByLength[kMaxChainVertices + 1] = {}, neeEnergyByLength[kMaxChainVertices + 1] = {};
-  RgbImage inPlace;  // the contributions deposited where they are
-  MltStats stats;    // b and the bootstrap's counts
-  uint64_t inPlaceByReason[kInPlaceReasonCount] = {};
-  RenderStats traced;  // its samples, rays and stage times
-  bool complete = false;  // false: the render was stopped during it
-};
-
-// The model and measure every part of an MLT render shares, for settings `s`.
-struct MltParts {
-  const ChainOptions& options;
-  StepSettings step;
-  RenderSetup setup;
-  FilmDensity density;
+  // With BDPT seeds the chains' film density is uniform (film_density.h), and so are the large
+  // steps' camera samples (the setup samples film positions uniformly in the pixel).
+  RenderSetup setup(scene, s, seedFilmMode(options));
+  FilmDensity density(setup.filter, s.width, s.height, options.seeds == SeedSampler::Bdpt);
   LargeStepModel model;
-  StepConfig ctx;
-  MltParts(const Scene& scene, const RenderSettings& s)
-      : options(chainOf(s)),
-        step(expectedValueSteps(options)),
-        // With BDPT seeds the chains' film density is uniform (film_density.h), and so are the
-        // large steps' camera samples (the setup samples film positions uniformly in the pixel).
-        setup(scene, s, seedFilmMode(options)),
-        density(setup.filter, s.width, s.height, options.seeds == SeedSampler::Bdpt),
-        model(largeStepModel(s, options, setup)),
-        ctx{MeasureContext{scene, setup.lights, setup.camera, density}, step, &model,
-            VertexRange{model.minVertices, model.maxVertices}} {}
-  static StepSettings expectedValueSteps(const ChainOptions& options) {
-    StepSettings step = stepSettingsOf(options);
-    step.expectedDeposit = true;  // MLT's expected-value splatting of current and proposed paths
-    return step;
-  }
-  static LargeStepModel largeStepModel(const RenderSettings& s, const ChainOptions& options, const RenderSetup& setup) {
-    LargeStepModel model;
-    model.probability = mltOf(s).largeStepProbability;
-    model.minVertices = options.directSamples > 0 ? 4 : 2;
-    model.maxVertices = s.maxDepth >= 0 ? std::min(kMaxChainVertices, s.maxDepth + 1) : kMaxChainVertices;
-    model.rrDepth = setup.ctx.rrDepth;
-    // Uniform lengths until the bootstrap knows better: the domain test only asks whether W > 0.
-    const double noEnergy[kMaxChainVertices + 1] = {};
-    model.setLengths(noEnergy);
-    return model;
-  }
-};
+  model.probability = mltOf(s).largeStepProbability;
+  model.minVertices = options.directSamples > 0 ? 4 : 2;
+  model.maxVertices = s.maxDepth >= 0 ? std::min(kMaxChainVertices, s.maxDepth + 1) : kMaxChainVertices;
+  model.rrDepth = setup.ctx.rrDepth;
+  // Uniform lengths until the bootstrap knows better: the domain test only asks whether W > 0.
+  const double noEnergy[kMaxChainVertices + 1] = {};
+  model.setLengths(noEnergy);
+  const StepConfig ctx{MeasureContext{scene, setup.lights, setup.camera, density}, step, &model,
+                       VertexRange{model.minVertices, model.maxVertices}};
+  auto partial = [&] {
+    stats.partial = true;
+    stats.spp = 0;
+    return RgbImage{s.width, s.height, std::vector<Color>(size_t(s.width) * size_t(s.height), Color(0.0f)), {}};
+  };
 
-// The bootstrap's samples, in order: sample k is sample k / P of pixel order[k % P].
-PathSampleSet bootstrapSamples(const RenderSetup& bootSetup, size_t count) {
-  return PathSampleSet{count, [&bootSetup](size_t k, uint32_t& pixel, uint32_t& sample) {
-                         const size_t pixels = bootSetup.order.size();
-                         pixel = bootSetup.order[k % pixels];
-                         sample = uint32_t(k / pixels);
-                       }};
-}
-
-// Bootstrap, first trace. Returns false when the render was stopped.
-bool takeMltBootstrap(const Scene& scene, const RenderSettings& s, const MltParts& parts, MltBootstrap& boot,
-                      const std::function<void(double)>& progress) {
-  const auto bootStart = std::chrono::steady_clock::now();
-  const ChainOptions& options = parts.options;
-  Bootstrap classes{parts.ctx, options.directSamples > 0, {}};
+  // Bootstrap, first trace: b, the energy by length, and the contributions the chains do not
+  // hold. Sample k is sample k / P of pixel order[k % P]; each domain contribution is noted
+  // by its sample and its (vertex count, technique), which name it within its sample.
+  auto bootStart = std::chrono::steady_clock::now();
+  Bootstrap boot{ctx, options.directSamples > 0, {}};
   Film inPlace(s.width, s.height);
-  RenderSettings& bs = boot.settings;
-  bs = subRenderSettings(s);
+  RenderSettings bs = subRenderSettings(s);
   bs.spp = bootstrapSamplesPerPixel(mltOf(s), double(s.width) * double(s.height), double(options.mutationsPerPixel),
                                     options.seeds == SeedSampler::Bdpt ? kBdptSampleSteps : kPathSampleSteps);
   bs.seed = streamKey(s.seed, kBootstrapStream, 0);
-  bs.tracer = parts.setup.sharedTracer;
+  bs.tracer = setup.sharedTracer;
   const RenderSetup bootSetup(scene, bs, seedFilmMode(options));
-  const PathSampleSet all = bootstrapSamples(bootSetup, bootSetup.order.size() * size_t(bs.spp));
-  MltStats& ms = boot.stats;
+  const size_t pixels = bootSetup.order.size();
+  const PathSampleSet all{pixels * size_t(bs.spp), [&](size_t k, uint32_t& pixel, uint32_t& sample) {
+                            pixel = bootSetup.order[k % pixels];
+                            sample = uint32_t(k / pixels);
+                          }};
+  struct Origin {
+    uint64_t sample;
+    uint16_t vertices;
+    uint8_t technique;  // the seed's explicitLight
+  };
+  std::vector<Origin> origins;  // per domain ordinal
   SeedStore store;
   size_t ordinal = 0;
   auto firstSink = [&](SeedStore& batch) {
-    classes.classify(
+    boot.classify(
         batch,
         [&](const SeedStore& b, size_t i, size_t) {
           const float e = luminance(b.contribution(i));
-          classes.energies.push_back(e);
-          classes.energyByLength[b.seeds.vertexCount[i]] += e;
-          if (b.seeds.explicitLight[i]) classes.neeEnergyByLength[b.seeds.vertexCount[i]] += e;
-          classes.total += e;
-          boot.origins.push_back({b.seeds.path[i], uint16_t(b.seeds.vertexCount[i]), b.seeds.explicitLight[i]});
+          boot.energies.push_back(e);
+          boot.energyByLength[b.seeds.vertexCount[i]] += e;
+          if (b.seeds.explicitLight[i]) boot.neeEnergyByLength[b.seeds.vertexCount[i]] += e;
+          boot.total += e;
+          origins.push_back({b.seeds.path[i], uint16_t(b.seeds.vertexCount[i]), b.seeds.explicitLight[i]});
         },
         [&](const SeedStore& b, size_t i, InPlaceReason why) {
-          ms.inPlaceEnergy += depositSeedInPlace(parts.density, b, i, luminance(b.contribution(i)), inPlace);
+          ms.inPlaceEnergy += depositSeedInPlace(density, b, i, luminance(b.contribution(i)), inPlace);
           ++ms.inPlaceSeeds;
-          ++boot.inPlaceByReason[why];
+          ++chainStatsOf(stats).inPlace[why];
         },
         ordinal);
   };
-  if (!traceSeedSamples(options.seeds, bs.height, bootSetup, all,
-                        PathTraceOutput{nullptr, nullptr, &store, firstSink, progress, s.stop}, boot.traced))
-    return false;
-  const double spp = double(bs.spp);
-  ms.bootstrapSamples = boot.traced.samples;
-  ms.domainSeeds = classes.energies.size();
-  ms.inPlaceEnergy /= spp;
-  ms.b = classes.total / spp;
-  boot.energies = std::move(classes.energies);
-  std::copy(std::begin(classes.energyByLength), std::end(classes.energyByLength), boot.energyByLength);
-  std::copy(std::begin(classes.neeEnergyByLength), std::end(classes.neeEnergyByLength), boot.neeEnergyByLength);
-  boot.inPlace = inPlace.resolve(spp);
-  ms.bootstrapSeconds = secondsSince(bootStart);
-  boot.complete = true;
-  return true;
-}
-
-// The bootstrap's statistics, added to a render's.
-void addBootstrapStats(const MltBootstrap& boot, RenderStats& stats) {
-  MltStats& ms = mltStatsOf(stats);
-  ms.b = boot.stats.b;
-  ms.inPlaceEnergy = boot.stats.inPlaceEnergy;
-  ms.bootstrapSamples += boot.stats.bootstrapSamples;
-  ms.domainSeeds += boot.stats.domainSeeds;
-  ms.inPlaceSeeds += boot.stats.inPlaceSeeds;
-  ms.bootstrapSeconds += boot.stats.bootstrapSeconds;
-  for (int r = 0; r < kInPlaceReasonCount; ++r) chainStatsOf(stats).inPlace[r] += boot.inPlaceByReason[r];
-  stats.samples += boot.traced.samples;
-  stats.rays += boot.traced.rays;
-  for (const auto& [name, seconds] : boot.traced.stages.all()) stats.stages.add("bootstrap " + name, seconds);
-}
-
-RgbImage stoppedMltRender(const RenderSettings& s, RenderStats& stats) {
-  stats.partial = true;
-  stats.spp = 0;
-  return RgbImage{s.width, s.height, std::vector<Color>(size_t(s.width) * size_t(s.height), Color(0.0f)), {}};
-}
-
-// The render after its bootstrap: `known`, or its own when null.
-RgbImage renderMltWith(const Scene& scene, const RenderSettings& s, RenderStats& stats, const MltBootstrap* known) {
-  validateMltSettings(s);
-  MltStats& ms = mltStatsOf(stats);
-  const RgbImage direct = renderDirectPass(scene, s, stats);
-  MltParts parts(scene, s);
-  const ChainOptions& options = parts.options;
-  RenderSetup& setup = parts.setup;
-
   // Progress: the bootstrap's samples and the chains' steps, as units of work alike.
-  const double mutations = double(options.mutationsPerPixel) * double(s.width) * double(s.height);
-  const double bootWork = known ? 0.0 : double(s.width) * double(s.height) *
-                                            bootstrapSamplesPerPixel(mltOf(s), double(s.width) * double(s.height), double(options.mutationsPerPixel),
-                                                                     options.seeds == SeedSampler::Bdpt ? kBdptSampleSteps : kPathSampleSteps);
-  const double work = bootWork + mutations;
-  MltBootstrap own;
-  if (!known) {
-    if (!takeMltBootstrap(scene, s, parts, own, [&](double f) {
-          if (s.progress) s.progress(f * bootWork / work);
-        }))
-      return stoppedMltRender(s, stats);
-    addBootstrapStats(own, stats);
-    known = &own;
-  }
-  const MltBootstrap& boot = *known;
-  if (!boot.complete) return stoppedMltRender(s, stats);
-  ms.b = boot.stats.b;
-  ms.inPlaceEnergy = boot.stats.inPlaceEnergy;
-  parts.model.setLengths(boot.energyByLength, boot.neeEnergyByLength);
+  const double mutationsRequested = double(options.mutationsPerPixel) * double(s.width) * double(s.height);
+  const double work = double(all.count) + mutationsRequested;
+  auto bootProgress = [&](double f) {
+    if (s.progress) s.progress(f * double(all.count) / work);
+  };
+  RenderStats bootStats;
+  if (!traceSeedSamples(options.seeds, bs.height, bootSetup, all,
+                        PathTraceOutput{nullptr, nullptr, &store, firstSink, bootProgress, s.stop}, bootStats))
+    return partial();
+  const double spp = double(bs.spp);
+  ms.bootstrapSamples = bootStats.samples;
+  ms.domainSeeds = boot.energies.size();
+  ms.inPlaceEnergy /= spp;
+  ms.b = boot.total / spp;
+  model.setLengths(boot.energyByLength, boot.neeEnergyByLength);
 
   // The chains' start states; the second trace runs only the samples that made them (the
   // same paths, bit for bit: a sample's random stream is keyed by its pixel and number).
-  const auto startsStart = std::chrono::steady_clock::now();
+  const double mutations = mutationsRequested;
   const size_t chains = boot.energies.empty() ? 0 : size_t(std::min<double>(mltOf(s).chains, mutations));
   const uint32_t length = chains ? uint32_t(std::max(1.0, std::round(mutations / double(chains)))) : 0;
   // The chains' starts: systematic resampling of the domain contributions by luminance.
@@ -356,19 +267,18 @@ RgbImage renderMltWith(const Scene& scene, const RenderSettings& s, RenderStats&
       systematicPicks(std::vector<double>(boot.energies.begin(), boot.energies.end()), chains,
                       uniformDouble(streamKey(s.seed, kResampleStream, 0), 0));
   SeedStore starts;
-  RenderStats secondStats;
   if (chains > 0) {
-    const RenderSetup bootSetup(scene, boot.settings, seedFilmMode(options));
-    const PathSampleSet all = bootstrapSamples(bootSetup, bootSetup.order.size() * size_t(boot.settings.spp));
     std::vector<uint64_t> again;  // the samples to trace again, ascending
-    for (size_t c : chosen) again.push_back(boot.origins[c].sample);
+    for (size_t c : chosen) again.push_back(origins[c].sample);
     std::sort(again.begin(), again.end());
     again.erase(std::unique(again.begin(), again.end()), again.end());
     const PathSampleSet some{again.size(), [&](size_t j, uint32_t& pixel, uint32_t& sample) { all.at(again[j], pixel, sample); }};
     SeedStore retraced;
-    if (!traceSeedSamples(options.seeds, boot.settings.height, bootSetup, some,
+    RenderStats secondStats;
+    if (!traceSeedSamples(options.seeds, bs.height, bootSetup, some,
                           PathTraceOutput{nullptr, nullptr, &retraced, {}, nullptr, s.stop}, secondStats))
-      return stoppedMltRender(s, stats);
+      return partial();
+    bootStats.rays += secondStats.rays;
     // Each chosen contribution: its sample's row j in `again`, then its (count, technique): a
     // path-traced sample makes one path per count and technique, a BDPT sample one per count
     // and strategy (its light vertices s, in explicitLight).
@@ -381,7 +291,7 @@ RgbImage renderMltWith(const Scene& scene, const RenderSettings& s, RenderStats&
     for (size_t next = 0; next < chosen.size();) {
       size_t copies = 1;
       while (next + copies < chosen.size() && chosen[next + copies] == chosen[next]) ++copies;
-      const BootstrapOrigin& o = boot.origins[chosen[next]];
+      const Origin& o = origins[chosen[next]];
       const uint64_t j = uint64_t(std::lower_bound(again.begin(), again.end(), o.sample) - again.begin());
       const auto it = byName.find(name(j, o.vertices, o.technique));
       if (it == byName.end()) throw std::logic_error("mlt: a bootstrap path did not trace again identically");
@@ -389,12 +299,12 @@ RgbImage renderMltWith(const Scene& scene, const RenderSettings& s, RenderStats&
       next += copies;
     }
   }
-  ms.bootstrapSeconds += secondsSince(startsStart);
+  ms.bootstrapSeconds = secondsSince(bootStart);
   ms.chains = chains;
   ms.chainLength = length;
   ms.energyPerStep = chains ? ms.b / (double(chains) * double(length)) : 0;
-  stats.rays += secondStats.rays;
-  for (const auto& [name, seconds] : secondStats.stages.all()) stats.stages.add("bootstrap " + name, seconds);
+  stats.rays += bootStats.rays;
+  for (const auto& [name, seconds] : bootStats.stages.all()) stats.stages.add("bootstrap " + name, seconds);
 
   // The chains.
   ChainSettings chainSettings = chainSettingsOf(options);
@@ -407,11 +317,11 @@ RgbImage renderMltWith(const Scene& scene, const RenderSettings& s, RenderStats&
   GroupProgress chainProgress;
   chainProgress.start(
       [&](double f) {
-        if (s.progress) s.progress((bootWork + f * mutations) / work);
+        if (s.progress) s.progress((double(all.count) + f * mutations) / work);
       },
       0, steps);
   chainProgress.seeds(1.0);  // every start state is in: the steps alone may reach 1
-  ChainLanes::Config config{parts.ctx, chainSettings, s.seed, kErptLaneSlots, ms.energyPerStep, s.stop,
+  ChainLanes::Config config{ctx, chainSettings, s.seed, kErptLaneSlots, ms.energyPerStep, s.stop,
                             [&](uint64_t taken) { chainProgress.chainSteps(taken); }, setup.pool.threads(), &policy};
   ChainLanes machine(setup.tracer, config, setup.film, chainStatsOf(stats), stats.stages);
   const auto chainStart = std::chrono::steady_clock::now();
@@ -425,8 +335,9 @@ RgbImage renderMltWith(const Scene& scene, const RenderSettings& s, RenderStats&
   // (ChainLanes::depositUnfinished), so the image holds all of b; keptSpp is the share of the
   // steps run, in units of the spp.
   RgbImage image = machine.image(1.0);
+  const RgbImage rest = inPlace.resolve(spp);
   for (size_t i = 0; i < image.pixels.size(); ++i) {
-    image.pixels[i] += boot.inPlace.pixels[i];
+    image.pixels[i] += rest.pixels[i];
     if (!direct.pixels.empty()) image.pixels[i] += direct.pixels[i];
   }
   stats.spp = done ? 1 : 0;
@@ -435,29 +346,9 @@ RgbImage renderMltWith(const Scene& scene, const RenderSettings& s, RenderStats&
     // The image holds all of b at any stop: it stands for the share of the steps run.
     stats.keptSpp = std::max(1e-9, double(s.spp) * double(machine.stepsTaken()) / std::max(1.0, steps));
   }
+  stats.samples = bootStats.samples;
   addChainMaps(machine.tallies(), s.width, s.height, stats.extraImages);
   return image;
-}
-
-// A time-budgeted render's passes (IntegratorModule::timedPasses): one bootstrap, taken with
-// the whole render's settings, shared by every pass.
-PassRenderer mltTimedPasses(const Scene& scene, const RenderSettings& whole, RenderStats& stats) {
-  RenderSettings once = whole;
-  once.onPasses = nullptr;
-  validateMltSettings(once);
-  const MltParts parts(scene, whole);
-  auto boot = std::make_shared<MltBootstrap>();
-  if (takeMltBootstrap(scene, whole, parts, *boot, nullptr)) addBootstrapStats(*boot, stats);
-  std::shared_ptr<const MltBootstrap> shared = boot;
-  return [shared](const Scene& sc, const RenderSettings& pass, RenderStats& ps) {
-    return renderMltWith(sc, pass, ps, shared.get());
-  };
-}
-
-}  // namespace
-
-RgbImage renderMlt(const Scene& scene, const RenderSettings& s, RenderStats& stats) {
-  return renderMltWith(scene, s, stats, nullptr);
 }
 
 std::vector<OptionSpec> metropolisOptions() {
@@ -494,7 +385,6 @@ IntegratorModule mltModule() {
     validateMltSettings(once);
   };
   m.render = renderMlt;
-  m.timedPasses = mltTimedPasses;
   m.printSummary = printMltSummary;
   m.addStats = [](RenderStats& to, const RenderStats& from) {
     addChainStats(chainStatsOf(to), chainStatsOf(from));  // the chain step's counts
