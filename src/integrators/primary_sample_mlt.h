@@ -14,7 +14,7 @@ void validatePrimarySampleMlt(const RenderSettings& settings, bool multiplexed);
 RgbImage renderPrimarySampleMlt(const Scene& scene, const RenderSettings& settings, RenderStats& stats,
                                 bool multiplexed);
 // A time-budgeted render's passes (IntegratorModule::timedPasses): one bootstrap, taken here
-// with the whole render's settings, shared by every pass.
+// with the whole render's settings, shared by every pass (mmlt's).
 PassRenderer primarySampleMltTimedPasses(const Scene& scene, const RenderSettings& whole, RenderStats& stats,
                                          bool multiplexed);
 // mmlt's longest path in segments: --max-depth, or 6 (pbrt-v4's five bounces) when unbounded.

@@ -85,34 +85,32 @@ TEST(TimedRender, ErptKeepsMutationsPerSeed) {
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c] / r[c], 1.0, 0.05) << "channel " << c;
 }
 
-// pssmlt and mmlt under a budget take one bootstrap, with the configured mutations per pixel,
-// and every pass resamples its chains from it: the render's bootstrap samples are those of a
-// render of fixed size (not one bootstrap per pass), and the average of the passes stays
+// mmlt under a budget takes one bootstrap, with the configured mutations per pixel, and every
+// pass resamples its chains from it: the render's bootstrap samples are those of a render of
+// fixed size (not one bootstrap per pass, as pssmlt's and mlt's), and the average of the passes stays
 // unbiased: its channel means match a render of fixed size with 16 times the mutations (their
 // unbiasedness is the closed-form and block tests' job).
-TEST(TimedRender, PrimarySampleMltTakesOneBootstrapForAllPasses) {
+TEST(TimedRender, MmltTakesOneBootstrapForAllPasses) {
   const Scene scene = cornell();
-  for (const char* name : {"pssmlt", "mmlt"}) {
-    RenderSettings fixed = timed(name, 0);
-    fixed.spp = 1;
-    fixed.maxDepth = 4;
-    chainOf(fixed).mutationsPerPixel = 16;
-    mltOf(fixed).chains = 256;
-    RenderStats once, longStats;
-    render(scene, fixed, once);
-    RenderSettings longer = fixed;
-    chainOf(longer).mutationsPerPixel *= 16;
-    const Color r = test::meanOf(render(scene, longer, longStats));
-    RenderSettings s = fixed;
-    s.timeBudget = 1;
-    RenderStats stats;
-    const RgbImage img = render(scene, s, stats);
-    EXPECT_GE(stats.passes, 2) << name;
-    EXPECT_EQ(pssmltStatsOf(stats).bootstrapSamples, pssmltStatsOf(once).bootstrapSamples) << name;
-    EXPECT_EQ(pssmltStatsOf(stats).b, pssmltStatsOf(once).b) << name;
-    const Color m = test::meanOf(img);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c] / r[c], 1.0, 0.05) << name << " channel " << c;
-  }
+  RenderSettings fixed = timed("mmlt", 0);
+  fixed.spp = 1;
+  fixed.maxDepth = 4;
+  chainOf(fixed).mutationsPerPixel = 16;
+  mltOf(fixed).chains = 256;
+  RenderStats once, longStats;
+  render(scene, fixed, once);
+  RenderSettings longer = fixed;
+  chainOf(longer).mutationsPerPixel *= 16;
+  const Color r = test::meanOf(render(scene, longer, longStats));
+  RenderSettings s = fixed;
+  s.timeBudget = 1;
+  RenderStats stats;
+  const RgbImage img = render(scene, s, stats);
+  EXPECT_GE(stats.passes, 2);
+  EXPECT_EQ(pssmltStatsOf(stats).bootstrapSamples, pssmltStatsOf(once).bootstrapSamples);
+  EXPECT_EQ(pssmltStatsOf(stats).b, pssmltStatsOf(once).b);
+  const Color m = test::meanOf(img);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c] / r[c], 1.0, 0.05) << "channel " << c;
 }
 
 TEST(TimedRender, AbsurdBudgetsAreRejected) {

@@ -28,6 +28,8 @@ IntegratorModule mmltModule() {
   m.render = [](const Scene& scene, const RenderSettings& s, RenderStats& stats) {
     return renderPrimarySampleMlt(scene, s, stats, true);
   };
+  // Its bootstrap (up to 100,000 samples for each path length) costs many passes' chains:
+  // taken once for a time-budgeted render (docs/pssmlt.md, "Time budgets").
   m.timedPasses = [](const Scene& scene, const RenderSettings& s, RenderStats& stats) {
     return primarySampleMltTimedPasses(scene, s, stats, true);
   };

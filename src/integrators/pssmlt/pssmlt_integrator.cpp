@@ -29,9 +29,6 @@ IntegratorModule pssmltModule() {
   m.render = [](const Scene& scene, const RenderSettings& s, RenderStats& stats) {
     return renderPrimarySampleMlt(scene, s, stats, false);
   };
-  m.timedPasses = [](const Scene& scene, const RenderSettings& s, RenderStats& stats) {
-    return primarySampleMltTimedPasses(scene, s, stats, false);
-  };
   m.printSummary = [](const RenderStats& stats) { printPrimarySampleSummary("pssmlt", stats); };
   m.addStats = [](RenderStats& to, const RenderStats& from) { addPssmltStats(pssmltStatsOf(to), pssmltStatsOf(from)); };
   m.scaleTimedPass = [](const RenderSettings& s, RenderSettings& pass) {
