@@ -27,7 +27,6 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <memory>
 #include <cmath>
 #include <mutex>
 #include <numeric>
@@ -293,9 +292,7 @@ void validatePrimarySampleMlt(const RenderSettings& s, bool multiplexed) {
 namespace {
 
 // The bootstrap: samples of fresh primary vectors drawn from `seed`'s stream, their values
-// and (mmlt) path lengths, and b. A time-budgeted render takes it once and shares it among
-// its passes: each pass resamples its chains' starts from it anew, so each is unbiased on its
-// own (docs/pssmlt.md), and the sampling cost of b is paid once.
+// and (mmlt) path lengths, and b.
 struct PrimarySampleBootstrap {
   uint64_t seed = 0;
   std::vector<double> values;
@@ -353,9 +350,9 @@ void keepOffDirectPaths(RenderSetup& setup, const RenderSettings& s, bool multip
   if (hasDirectPass(s, multiplexed)) setup.ctx.minSegments = 3;
 }
 
-// The render after its bootstrap: `known`, or its own when null.
-RgbImage renderWithBootstrap(const Scene& scene, const RenderSettings& s, RenderStats& stats, bool multiplexed,
-                             const PrimarySampleBootstrap* known) {
+}  // namespace
+
+RgbImage renderPrimarySampleMlt(const Scene& scene, const RenderSettings& s, RenderStats& stats, bool multiplexed) {
   validatePrimarySampleMlt(s, multiplexed);
   PssmltStats& ps = pssmltStatsOf(stats);
   const MltSettings& m = mltOf(s);
@@ -367,13 +364,8 @@ RgbImage renderWithBootstrap(const Scene& scene, const RenderSettings& s, Render
   const double mutationsPerPixel = chainOf(s).mutationsPerPixel;
   PoolTimes times(stats.stages, setup.pool.threads());
   std::atomic<uint64_t> rays{0};
-  PrimarySampleBootstrap own;
-  if (!known) {
-    own = takeBootstrap(setup, s, multiplexed, stats.stages);
-    addBootstrapStats(own, stats);
-    known = &own;
-  }
-  const PrimarySampleBootstrap& boot = *known;
+  const PrimarySampleBootstrap boot = takeBootstrap(setup, s, multiplexed, stats.stages);
+  addBootstrapStats(boot, stats);
   const double b = boot.b;
   ps.b = b;
   const std::vector<uint8_t>& bootSegments = boot.segments;
@@ -497,24 +489,6 @@ RgbImage renderWithBootstrap(const Scene& scene, const RenderSettings& s, Render
   if (stepsDone > 0) film.addTo(image, double(stepsDone) / double(pixels));
   for (size_t i = 0; i < direct.pixels.size(); ++i) image.pixels[i] += direct.pixels[i];
   return image;
-}
-
-}  // namespace
-
-RgbImage renderPrimarySampleMlt(const Scene& scene, const RenderSettings& s, RenderStats& stats, bool multiplexed) {
-  return renderWithBootstrap(scene, s, stats, multiplexed, nullptr);
-}
-
-PassRenderer primarySampleMltTimedPasses(const Scene& scene, const RenderSettings& whole, RenderStats& stats,
-                                         bool multiplexed) {
-  validatePrimarySampleMlt(whole, multiplexed);
-  RenderSetup setup(scene, whole);
-  keepOffDirectPaths(setup, whole, multiplexed);
-  auto boot = std::make_shared<const PrimarySampleBootstrap>(takeBootstrap(setup, whole, multiplexed, stats.stages));
-  addBootstrapStats(*boot, stats);
-  return [boot, multiplexed](const Scene& sc, const RenderSettings& pass, RenderStats& ps) {
-    return renderWithBootstrap(sc, pass, ps, multiplexed, boot.get());
-  };
 }
 
 }  // namespace erpt

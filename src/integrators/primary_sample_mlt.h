@@ -1,7 +1,6 @@
 // Primary-sample-space MLT, the engine of `pssmlt` and `mmlt` (docs/pssmlt.md).
 #pragma once
 
-#include "erpt/integrators.h"
 #include "erpt/pssmlt_settings.h"
 #include "erpt/render.h"
 
@@ -13,10 +12,6 @@ namespace erpt {
 void validatePrimarySampleMlt(const RenderSettings& settings, bool multiplexed);
 RgbImage renderPrimarySampleMlt(const Scene& scene, const RenderSettings& settings, RenderStats& stats,
                                 bool multiplexed);
-// A time-budgeted render's passes (IntegratorModule::timedPasses): one bootstrap, taken here
-// with the whole render's settings, shared by every pass (mmlt's).
-PassRenderer primarySampleMltTimedPasses(const Scene& scene, const RenderSettings& whole, RenderStats& stats,
-                                         bool multiplexed);
 // mmlt's longest path in segments: --max-depth, or 6 (pbrt-v4's five bounces) when unbounded.
 int mmltLongestPath(const RenderSettings& settings);
 

@@ -6,8 +6,6 @@
 #include <map>
 
 #include "erpt/erpt_settings.h"
-#include "erpt/mlt_settings.h"
-#include "erpt/pssmlt_settings.h"
 #include "integrators/noise_filters.h"
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
@@ -82,34 +80,6 @@ TEST(TimedRender, ErptKeepsMutationsPerSeed) {
   const double expected = double(stats.spp) / 8 * 40 * 32 * 32;
   EXPECT_NEAR(double(chainStatsOf(stats).mutations) / expected, 1.0, 0.15) << chainStatsOf(stats).mutations << " vs " << expected;
   const Color m = test::meanOf(img), r = test::meanOf(readImage(test::sharedScenesDir() + "/cornell-box/TungstenRender.exr"));
-  for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c] / r[c], 1.0, 0.05) << "channel " << c;
-}
-
-// mmlt under a budget takes one bootstrap, with the configured mutations per pixel, and every
-// pass resamples its chains from it: the render's bootstrap samples are those of a render of
-// fixed size (not one bootstrap per pass, as pssmlt's and mlt's), and the average of the passes stays
-// unbiased: its channel means match a render of fixed size with 16 times the mutations (their
-// unbiasedness is the closed-form and block tests' job).
-TEST(TimedRender, MmltTakesOneBootstrapForAllPasses) {
-  const Scene scene = cornell();
-  RenderSettings fixed = timed("mmlt", 0);
-  fixed.spp = 1;
-  fixed.maxDepth = 4;
-  chainOf(fixed).mutationsPerPixel = 16;
-  mltOf(fixed).chains = 256;
-  RenderStats once, longStats;
-  render(scene, fixed, once);
-  RenderSettings longer = fixed;
-  chainOf(longer).mutationsPerPixel *= 16;
-  const Color r = test::meanOf(render(scene, longer, longStats));
-  RenderSettings s = fixed;
-  s.timeBudget = 1;
-  RenderStats stats;
-  const RgbImage img = render(scene, s, stats);
-  EXPECT_GE(stats.passes, 2);
-  EXPECT_EQ(pssmltStatsOf(stats).bootstrapSamples, pssmltStatsOf(once).bootstrapSamples);
-  EXPECT_EQ(pssmltStatsOf(stats).b, pssmltStatsOf(once).b);
-  const Color m = test::meanOf(img);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(m[c] / r[c], 1.0, 0.05) << "channel " << c;
 }
 

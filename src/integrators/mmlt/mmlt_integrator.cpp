@@ -28,11 +28,6 @@ IntegratorModule mmltModule() {
   m.render = [](const Scene& scene, const RenderSettings& s, RenderStats& stats) {
     return renderPrimarySampleMlt(scene, s, stats, true);
   };
-  // Its bootstrap (up to 100,000 samples for each path length) costs many passes' chains:
-  // taken once for a time-budgeted render (docs/pssmlt.md, "Time budgets").
-  m.timedPasses = [](const Scene& scene, const RenderSettings& s, RenderStats& stats) {
-    return primarySampleMltTimedPasses(scene, s, stats, true);
-  };
   m.printSummary = [](const RenderStats& stats) { printPrimarySampleSummary("mmlt", stats); };
   m.addStats = [](RenderStats& to, const RenderStats& from) { addPssmltStats(pssmltStatsOf(to), pssmltStatsOf(from)); };
   m.scaleTimedPass = [](const RenderSettings& s, RenderSettings& pass) {
