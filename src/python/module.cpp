@@ -384,6 +384,14 @@ PyResult renderScene(const PyScene& scene, const py::object& integrator, const p
   }
   worker.join();
   if (!failure) deliverPasses();
+  // A render shorter than one wait still reports where it ended (1 when it finished).
+  if (!failure && !progress.is_none() && fraction != reported && !callbackFailure) {
+    try {
+      progress(double(fraction));
+    } catch (...) {
+      callbackFailed();
+    }
+  }
   if (failure) std::rethrow_exception(failure);
   if (callbackFailure) std::rethrow_exception(callbackFailure);
   if (interrupted && stats.spp == 0 && !(stats.keptSpp > 0)) {  // stopped before anything could be kept
