@@ -52,6 +52,19 @@ struct VertexBsdf {
   }
   // Solid-angle density of sampling `to` arriving from `from` (either side).
   float pdf(Vec3 from, Vec3 to) const { return bsdfPdf(*material, colors, frame.toLocal(from), frame.toLocal(to)); }
+  // A connection's three numbers from directions already in the vertex's frame (each
+  // direction is taken to local coordinates once, not once per number): eval(towardCamera,
+  // towardLight), and the densities pdf(towardCamera, towardLight) and pdf(towardLight,
+  // towardCamera). The same bits as the three calls above. Returns false (and only f is set)
+  // when f is black: the connection carries nothing and needs no density.
+  bool connection(Vec3 towardCameraLocal, Vec3 towardLightLocal, Color& f, float& pdfToLight,
+                  float& pdfToCamera) const {
+    f = bsdfEval(*material, colors, towardCameraLocal, towardLightLocal);
+    if (isBlack(f)) return false;
+    pdfToLight = bsdfPdf(*material, colors, towardCameraLocal, towardLightLocal);
+    pdfToCamera = bsdfPdf(*material, colors, towardLightLocal, towardCameraLocal);
+    return true;
+  }
 };
 VertexBsdf vertexBsdf(const Scene& scene, const BdptVertex& v);
 

@@ -83,6 +83,32 @@ struct MisBuilder {
   }
 };
 
+// The BSDFs of a subpath's vertices: all of them, or (`only` >= 1) vertex only - 1's alone;
+// and for each vertex j >= 1 with one, the direction back to vertex j - 1, in world and local
+// coordinates.
+void prepareSubpath(const Scene& scene, const std::vector<BdptVertex>& subpath, int only, std::vector<VertexBsdf>& bsdf,
+                    std::vector<Vec3>& back, std::vector<Vec3>& backLocal) {
+  // Grown, never shrunk: a resize to each sample's lengths constructed the rows again.
+  if (bsdf.size() < subpath.size()) {
+    bsdf.resize(subpath.size());
+    back.resize(subpath.size());
+    backLocal.resize(subpath.size());
+  }
+  for (size_t j = 0; j < subpath.size(); ++j) {
+    if (only >= 0 && int(j) != only - 1) {
+      bsdf[j].material = nullptr;
+      continue;
+    }
+    // Constructed in place (VertexBsdf is trivially destructible): an assignment copied each
+    // vertex's BSDF, colours and all, once more.
+    new (&bsdf[j]) VertexBsdf(vertexBsdf(scene, subpath[j]));
+    if (j >= 1 && bsdf[j].material) {
+      back[j] = directionTo(subpath[j], subpath[j - 1]);
+      backLocal[j] = bsdf[j].frame.toLocal(back[j]);
+    }
+  }
+}
+
 }  // namespace
 
 void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptConnectScratch& scratch,
@@ -153,13 +179,11 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
     }
     gatherSubpath(paths.vertices, paths.lightEnd[i], light, lightIndex);
     gatherSubpath(paths.vertices, paths.cameraEnd[i], cam, cameraIndex);
-    // Grown, never shrunk: a resize to each sample's lengths constructed the rows again.
-    if (lightBsdf.size() < light.size()) lightBsdf.resize(light.size());
-    if (cameraBsdf.size() < cam.size()) cameraBsdf.resize(cam.size());
-    // Constructed in place (VertexBsdf is trivially destructible): an assignment copied each
-    // vertex's BSDF, colours and all, once more.
-    for (size_t j = 0; j < light.size(); ++j) new (&lightBsdf[j]) VertexBsdf(vertexBsdf(scene, light[j]));
-    for (size_t j = 0; j < cam.size(); ++j) new (&cameraBsdf[j]) VertexBsdf(vertexBsdf(scene, cam[j]));
+    // A sample of one strategy (s, t) reads only light[s - 1]'s BSDF and cam[t - 1]'s: the
+    // others are left without a material, so that they read as not connectable (no strategy
+    // that keep() refuses would reach them anyway).
+    prepareSubpath(scene, light, sampleS, lightBsdf, scratch.lightBack, scratch.lightBackLocal);
+    prepareSubpath(scene, cam, sampleT, cameraBsdf, scratch.cameraBack, scratch.cameraBackLocal);
     const int nL = int(light.size()), nC = int(cam.size());
     const uint32_t sample = uint32_t(i);
 
@@ -194,19 +218,18 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
                          drawFloat(ctx.stage, cameraKey, bounceDim(uint32_t(j), kLight1)),
                          drawFloat(ctx.stage, cameraKey, bounceDim(uint32_t(j), kLight2)), ls))
         continue;
-      const Vec3 towardCamera = directionTo(y, cam[j - 1]);
-      const Color f = cameraBsdf[j].eval(towardCamera, ls.direction);
-      if (isBlack(f)) continue;
+      const Vec3 towardLightLocal = cameraBsdf[j].frame.toLocal(ls.direction);
+      Color f;
+      float toLight, toCamera;
+      if (!cameraBsdf[j].connection(scratch.cameraBackLocal[size_t(j)], towardLightLocal, f, toLight, toCamera)) continue;
       BdptVertex lightVertex = lightVertexOf(scene, ls);
       const BdptVertex& z = lightVertex;  // its densities, set next, are read only by the MIS weight
       float pdfPosition, pdfDirection;
       lights.emissionDensity(z.emitter, z.primitive, z.ng, -ls.direction, pdfPosition, pdfDirection);
       lightVertex.pdfForward = pdfPosition;
       lightVertex.pdfReverse = 0;
-      mis.build(cam.data(), j + 1, &lightVertex, 1,
-                areaDensity(cameraBsdf[j].pdf(towardCamera, ls.direction), y, z), 0,
-                areaDensity(pdfDirection, z, y),
-                j - 1 >= 1 ? areaDensity(cameraBsdf[j].pdf(ls.direction, towardCamera), y, cam[j - 1]) : 0.0f);
+      mis.build(cam.data(), j + 1, &lightVertex, 1, areaDensity(toLight, y, z), 0, areaDensity(pdfDirection, z, y),
+                j - 1 >= 1 ? areaDensity(toCamera, y, cam[j - 1]) : 0.0f);
       mis.path.nextEventDensity = ls.pdfLight;
       mis.path.lightHittable = hittableLight(scene, z);
       mis.path.lightSeenByLightTracing = areaLight(scene, z);
@@ -224,25 +247,25 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
     // s >= 2, t >= 2: light vertex s - 1 to camera vertex t - 1.
     for (int s = 2; s <= nL; ++s) {
       const BdptVertex& z = light[s - 1];
-      if (!lightBsdf[s - 1].connectable()) continue;
-      const Vec3 zOut = directionTo(z, light[s - 2]);
+      const VertexBsdf& zBsdf = lightBsdf[s - 1];
+      if (!zBsdf.connectable()) continue;
+      const Vec3 zOutLocal = scratch.lightBackLocal[size_t(s - 1)];
       for (int t = 2; t <= nC; ++t) {
         const BdptVertex& y = cam[t - 1];
+        const VertexBsdf& yBsdf = cameraBsdf[t - 1];
         if (!keep(s, t)) continue;
-        if (!cameraBsdf[t - 1].connectable()) continue;
+        if (!yBsdf.connectable()) continue;
         const Vec3 d = z.p - y.p;
         const float d2 = dot(d, d);
         if (!(d2 > 0)) continue;
         const Vec3 w = d / std::sqrt(d2);
-        const Vec3 yIn = directionTo(y, cam[t - 2]);
-        const Color fy = cameraBsdf[t - 1].eval(yIn, w);
-        if (isBlack(fy)) continue;
-        const Color fz = lightBsdf[s - 1].eval(-w, zOut);
-        if (isBlack(fz)) continue;
-        mis.build(cam.data(), t, light.data(), s, areaDensity(cameraBsdf[t - 1].pdf(yIn, w), y, z),
-                  areaDensity(lightBsdf[s - 1].pdf(-w, zOut), z, light[s - 2]),
-                  areaDensity(lightBsdf[s - 1].pdf(zOut, -w), z, y),
-                  t - 2 >= 1 ? areaDensity(cameraBsdf[t - 1].pdf(w, yIn), y, cam[t - 2]) : 0.0f);
+        Color fy, fz;
+        float yToLight, yToCamera, zToLight, zToCamera;
+        if (!yBsdf.connection(scratch.cameraBackLocal[size_t(t - 1)], yBsdf.frame.toLocal(w), fy, yToLight, yToCamera))
+          continue;
+        if (!zBsdf.connection(zBsdf.frame.toLocal(-w), zOutLocal, fz, zToLight, zToCamera)) continue;
+        mis.build(cam.data(), t, light.data(), s, areaDensity(yToLight, y, z), areaDensity(zToLight, z, light[s - 2]),
+                  areaDensity(zToCamera, z, y), t - 2 >= 1 ? areaDensity(yToCamera, y, cam[t - 2]) : 0.0f);
         mis.path.nextEventDensity = paths.lightNextEvent[i];
         mis.path.lightHittable = hittableLight(scene, light[0]);
         mis.path.lightSeenByLightTracing = areaLight(scene, light[0]);
@@ -277,12 +300,18 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
         if (!(cosCamera > 0) || !camera.projectFrom(eye.p, z.p, fx, fy) || !(fx >= 0 && fx < float(width)) ||
             !(fy >= 0 && fy < float(height)))
           continue;
-        const Color fz = s == 1 ? lightVertexEmission(scene, z, -w) : lightBsdf[s - 1].eval(-w, directionTo(z, light[s - 2]));
-        if (isBlack(fz)) continue;
+        Color fz;
+        float zToLight = 0, zToCamera;
+        if (s == 1) {
+          fz = lightVertexEmission(scene, z, -w);
+          if (isBlack(fz)) continue;
+        } else if (!lightBsdf[s - 1].connection(lightBsdf[s - 1].frame.toLocal(-w),
+                                                scratch.lightBackLocal[size_t(s - 1)], fz, zToLight, zToCamera)) {
+          continue;
+        }
         const float cameraPdf = cameraDirectionDensity(camera, width, height, w);
         mis.build(&eye, 1, light.data(), s, areaDensity(cameraPdf, eye, z),
-                  s >= 2 ? areaDensity(lightBsdf[s - 1].pdf(-w, directionTo(z, light[s - 2])), z, light[s - 2]) : 0.0f,
-                  0, 0);
+                  s >= 2 ? areaDensity(zToLight, z, light[s - 2]) : 0.0f, 0, 0);
         mis.path.nextEventDensity = paths.lightNextEvent[i];
         mis.path.lightHittable = hittableLight(scene, light[0]);
         mis.path.lightSeenByLightTracing = areaLight(scene, light[0]);
