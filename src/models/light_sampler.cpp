@@ -212,8 +212,11 @@ bool LightSampler::sampleSphere(const Item& item, float prob, Vec3 ref, float u1
     return finishAreaSample(item.index, prob / item.area, ref, c + radial * r, s.flipped[i] ? -radial : radial, out);
   }
   // Uniform in the cone around the direction to the centre; the ray's first hit on the
-  // sphere is the light point (solved in double precision: near the silhouette a float
-  // solve puts the point visibly off the ray), and the direction is the one to that point.
+  // sphere is the light point, and the direction is the one to that point. With x = 1 -
+  // cos(theta) = u1 cone, the hit lies at t = dc (cos(theta) - sqrt(sin^2(thetaMax) -
+  // sin^2(theta))), and sin^2(thetaMax) - sin^2(theta) = cone (2 - cone) - x (2 - x) =
+  // cone (1 - u1) (2 - cone - x): a product without the cancellation near the silhouette
+  // that made a float solve of the ray put the point visibly off it.
   const Vec3 toCenter = c - ref;
   const float dc = length(toCenter);
   const float oneMinusCos = u1 * cone;
@@ -222,7 +225,8 @@ bool LightSampler::sampleSphere(const Item& item, float prob, Vec3 ref, float u1
   const float sinTheta = std::sqrt(std::max(0.0f, sin2Theta)), phi = 2 * kPi * u2;
   const Frame frame(toCenter / dc);
   const Vec3 w = frame.toWorld({sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta});
-  const float t = refineSphereHit(s, i, ref, w, 0.0f);  // the nearer root
+  const float beyond = cone * (1 - u1) * (2 - cone - oneMinusCos);  // sin^2(thetaMax) - sin^2(theta)
+  const float t = dc * (cosTheta - std::sqrt(std::max(0.0f, beyond)));
   const Vec3 radial = normalize(ref + w * t - c);
   const Vec3 p = c + radial * r;
   const Vec3 d = p - ref;
