@@ -42,8 +42,8 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     if (item.kind == Kind::Triangle) {
       item.a = mesh.position(mesh.v0[p]), item.b = mesh.position(mesh.v1[p]), item.c = mesh.position(mesh.v2[p]);
       item.normal = normalize(mesh.faceNormal(p));
-      hasTriangleLights_ = true;
     }
+    hasPacketLights_ = true;
     items_.push_back(item);
     weights.push_back(w);
   }
@@ -86,18 +86,29 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
     }
   }
   if (!cdf_.empty()) cdf_.back() = 1.0f;
-  triangleLights_.resize(items_.size());
+  packetLights_.resize(items_.size());
   for (size_t i = 0; i < items_.size(); ++i) {
-    TriangleLightQueue::Row row;  // zero corners and emitter -1 unless a triangle
-    if (items_[i].kind != Kind::Triangle) {
-      triangleLights_.setRow(i, row);
+    PacketLightQueue::Row row;  // kind 0 and emitter -1 unless a triangle or a sphere
+    const Item& item = items_[i];
+    if (item.kind == Kind::Triangle) {
+      row.kind = kTrianglePacketLight;
+      row.a = item.a, row.b = item.b, row.c = item.c, row.normal = item.normal;
+      row.emitter = scene.emitterOf(item.index);
+    } else if (item.kind == Kind::Sphere) {
+      const uint32_t sphere = scene.sphereOf(item.index);
+      row.kind = kSpherePacketLight;
+      row.a = scene.spheres.center(sphere);
+      row.radius = scene.spheres.radius[sphere];
+      row.flipped = scene.spheres.flipped[sphere] ? 1.0f : 0.0f;
+      row.emitter = scene.spheres.emitter[sphere];
+    } else {
+      packetLights_.setRow(i, row);
       continue;
     }
-    row.a = items_[i].a, row.b = items_[i].b, row.c = items_[i].c, row.normal = items_[i].normal;
-    row.pdfArea = itemProbability(i) / items_[i].area;  // as sampleTriangle computes it
-    row.emitter = scene.emitterOf(items_[i].index);
+    row.probability = itemProbability(i);
+    row.pdfArea = itemProbability(i) / item.area;  // as sampleTriangle and sampleSphere compute it
     row.radiance = scene.emitters[size_t(row.emitter)].radiance;
-    triangleLights_.setRow(i, row);
+    packetLights_.setRow(i, row);
   }
 }
 
@@ -255,10 +266,10 @@ const LightSampler::Item& LightSampler::pick(double uPick, float& probability) c
   return items_[i];
 }
 
-bool LightSampler::pickTriangle(double uPick, uint32_t& row) const {
+bool LightSampler::pickPacketLight(double uPick, uint32_t& row) const {
   if (cdf_.empty()) return false;
   row = uint32_t(pickIndex(uPick));
-  return triangleLights_.emitter[row] >= 0;
+  return packetLights_.kind[row] != kNoPacketLight;
 }
 
 bool LightSampler::sample(Vec3 ref, double uPick, float u1, float u2, LightSample& out) const {

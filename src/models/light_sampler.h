@@ -15,19 +15,27 @@
 #include "core/soa.h"
 #include "models/surface.h"
 
-// A triangle light as sampleTriangle reads it, one row per light item.
-#define ERPT_TRIANGLE_LIGHT_FIELDS(F, V, C)                                                         \
-  V(a, "corner 0")                                                                                  \
-  V(b, "corner 1")                                                                                  \
-  V(c, "corner 2")                                                                                  \
-  V(normal, "unit face normal")                                                                     \
+// A light item as the vector shading kernels sample it, one row per item: a triangle as
+// sampleTriangle reads it, a sphere as sampleSphere does (kind 0: an item they leave to
+// sample()).
+#define ERPT_PACKET_LIGHT_FIELDS(F, V, C)                                                           \
+  F(int32_t, kind, 0, "PacketLightKind")                                                            \
+  V(a, "triangle: corner 0; sphere: centre")                                                        \
+  V(b, "triangle: corner 1")                                                                        \
+  V(c, "triangle: corner 2")                                                                        \
+  V(normal, "triangle: unit face normal")                                                           \
+  F(float, radius, 0, "sphere: radius")                                                             \
+  F(float, flipped, 0, "sphere: 1 when it emits inwards (sampled by area)")                         \
   C(radiance, "emitted radiance")                                                                   \
-  F(float, pdfArea, 0, "area density of sampling a point of it, p_light / area")                    \
-  F(int32_t, emitter, -1, "index into Scene::emitters (-1: the item is not a triangle)")
+  F(float, probability, 0, "p_light, the item's pick probability")                                  \
+  F(float, pdfArea, 0, "area density of sampling a point of it by area, p_light / area")            \
+  F(int32_t, emitter, -1, "index into Scene::emitters (-1: not a packet light)")
 
 namespace erpt {
 
-ERPT_SOA_STRUCT(TriangleLightQueue, ERPT_TRIANGLE_LIGHT_FIELDS)
+enum PacketLightKind : int32_t { kNoPacketLight = 0, kTrianglePacketLight = 1, kSpherePacketLight = 2 };
+
+ERPT_SOA_STRUCT(PacketLightQueue, ERPT_PACKET_LIGHT_FIELDS)
 
 struct LightSample {
   Vec3 position;     // on the emitter (for the environment: far along `direction`)
@@ -90,16 +98,16 @@ class LightSampler {
   Color emitted(const SurfacePoint& sp, Vec3 w) const;
   const Scene& scene() const { return scene_; }
 
-  // sample()'s light choice when it falls on a triangle, for kernels that finish the sample
-  // themselves (shade_path_diffuse.cpp): the light's row in triangleLights(). False when
-  // uPick picks any other kind of light.
-  bool pickTriangle(double uPick, uint32_t& row) const;
-  // One row per light item (zero rows for items that are not triangles), so that kernels can
-  // gather a packet's lights in vector lanes.
-  const TriangleLightQueue& triangleLights() const { return triangleLights_; }
-  // Whether pickTriangle can ever succeed (some light is a triangle), so that kernels on
-  // scenes lit only otherwise need not try it for every hit.
-  bool hasTriangleLights() const { return hasTriangleLights_; }
+  // sample()'s light choice when it falls on a triangle or a sphere, for kernels that finish
+  // the sample themselves (shade_path_diffuse.cpp): the light's row in packetLights(). False
+  // when uPick picks any other kind of light.
+  bool pickPacketLight(double uPick, uint32_t& row) const;
+  // One row per light item (kind 0 for items that are neither triangles nor spheres), so that
+  // kernels can gather a packet's lights in vector lanes.
+  const PacketLightQueue& packetLights() const { return packetLights_; }
+  // Whether pickPacketLight can ever succeed (some light is a triangle or a sphere), so that
+  // kernels on scenes lit only otherwise need not try it for every hit.
+  bool hasPacketLights() const { return hasPacketLights_; }
 
   // Emission sampling (light_emission.cpp): a light by power (the same choice as sample()),
   // a point on it and a direction, with their densities. False when it carries nothing.
@@ -152,11 +160,11 @@ class LightSampler {
   const Scene& scene_;
   std::vector<Item> items_;
   std::vector<float> cdf_;  // normalized, cdf_.back() == 1
-  TriangleLightQueue triangleLights_;  // row i: items_[i]'s corners, normal, radiance, emitter
+  PacketLightQueue packetLights_;  // row i: items_[i] as the vector kernels sample it
   std::vector<float> primitiveProbability_;  // per world primitive id (0 if not emissive; instanced ids are past it)
   std::vector<float> emitterProbability_;   // per point / environment emitter
   std::vector<int64_t> emitterPrimitive_;   // per emitter: one of its light-sampled primitives, -1 none
-  bool hasTriangleLights_ = false;
+  bool hasPacketLights_ = false;
   float environmentProbability_ = 0;
   const Emitter* environment_ = nullptr;  // the environment emitter, when it can be picked
   float sceneRadius_ = 1;

@@ -25,8 +25,9 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
   const Emitter* env = ctx.scene.environment();
   const bool recording = history.vertices != nullptr;
   // Plain diffuse hits go to the vector kernel, a packet at a time; the rest run the body below.
-  // On scenes without triangle lights no hit qualifies, and trying each would cost a light pick.
-  const bool vector = ctx.vectorShading && ctx.lights.hasTriangleLights();
+  // On scenes without triangle or sphere lights no hit qualifies, and trying each would cost a
+  // light pick.
+  const bool vector = ctx.vectorShading && ctx.lights.hasPacketLights();
   DiffuseShadePacket diffuse;
   for (size_t k = range.begin; k < range.end; ++k) {
     if (vector && diffuse.add(ctx, paths, slots, hits, k)) {

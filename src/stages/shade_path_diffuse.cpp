@@ -1,6 +1,6 @@
 // The diffuse shade kernel (shade_path_diffuse.h): gather, vector body, scatter. Every
 // formula mirrors the scalar code it replaces for these hits: triangleSurfaceAt, Frame,
-// LightSampler::sampleTriangle / finishAreaSample, connectToLight, the diffuse lobe of
+// LightSampler::sampleTriangle / sampleSphere / finishAreaSample, connectToLight, the diffuse lobe of
 // bsdfEval / bsdfPdf / bsdfSample, offsetOrigin and the roulette of stageShadePath.
 #include "stages/shade_path_diffuse.h"
 
@@ -40,6 +40,66 @@ V3 cosineHemisphere(const batch& u1, const batch& u2) {
   return {x, y, xsimd::sqrt(xsimd::max(batch(0.0f), 1.0f - x * x - y * y))};
 }
 
+// A light point of each lane's light: its position, its emitting normal, and (cone) whether
+// it was sampled in the cone of directions, whose solid-angle density is coneDensity.
+struct LanePacketLight {
+  V3 point, normal;
+  lanes cone;
+  batch coneDensity;
+};
+
+// sampleTriangle: the point at barycentrics from the square (squareToTriangle).
+void triangleLightPoints(const PacketLightQueue& lights, const indices& light, const batch& u1, const batch& u2,
+                         LanePacketLight& out) {
+  auto gather3 = [&](const auto& x, const auto& y, const auto& z) {
+    return V3{gatherLanes(x.data(), light), gatherLanes(y.data(), light), gatherLanes(z.data(), light)};
+  };
+  const lanes lower = u1 < u2;
+  const batch b1 = xsimd::select(lower, u1 * 0.5f, u1 - u2 * 0.5f);
+  const batch b2 = xsimd::select(lower, u2 - u1 * 0.5f, u2 * 0.5f);
+  out.point = gather3(lights.aX, lights.aY, lights.aZ) * (1.0f - b1 - b2) + gather3(lights.bX, lights.bY, lights.bZ) * b1 +
+              gather3(lights.cX, lights.cY, lights.cZ) * b2;
+  out.normal = gather3(lights.normalX, lights.normalY, lights.normalZ);
+  out.cone = lanes(false);
+  out.coneDensity = batch(0.0f);
+}
+
+// sampleSphere: uniform in the cone the sphere subtends at `ref` (sphereCone), the point where
+// that direction first meets it; or, from inside or for a sphere that emits inwards, a point
+// uniform by area.
+void sphereLightPoints(const PacketLightQueue& lights, const indices& light, const V3& ref, const batch& u1,
+                       const batch& u2, LanePacketLight& out) {
+  const V3 center{gatherLanes(lights.aX.data(), light), gatherLanes(lights.aY.data(), light),
+                  gatherLanes(lights.aZ.data(), light)};
+  const batch radius = gatherLanes(lights.radius.data(), light);
+  const lanes flipped = gatherLanes(lights.flipped.data(), light) != batch(0.0f);
+  const V3 toCenter = center - ref;
+  const batch dist2 = dot(toCenter, toCenter), r2 = radius * radius;
+  const lanes inCone = ~flipped & (dist2 > r2 * 1.0001f);
+  const batch sin2Max = r2 / dist2;
+  const batch cosMax = xsimd::sqrt(xsimd::max(batch(0.0f), 1.0f - sin2Max));
+  const batch cone = xsimd::select(inCone, sin2Max / (1.0f + cosMax), batch(0.0f));
+  const auto sc = xsimd::sincos(batch(2 * kPi) * u2);
+  // In the cone (the float solve of sampleSphere, cancellation-free near the silhouette).
+  const batch dc = xsimd::sqrt(dist2);
+  const batch x = u1 * cone, cosTheta = 1.0f - x;
+  const batch sinTheta = xsimd::sqrt(xsimd::max(batch(0.0f), x * (2.0f - x)));
+  const LaneFrame frame(toCenter / dc);
+  const V3 w = frame.toWorld({sinTheta * sc.second, sinTheta * sc.first, cosTheta});
+  const batch beyond = cone * (1.0f - u1) * (2.0f - cone - x);
+  const batch t = dc * (cosTheta - xsimd::sqrt(xsimd::max(batch(0.0f), beyond)));
+  const V3 onRay = ref + w * t - center;
+  const V3 coneRadial = onRay / xsimd::sqrt(dot(onRay, onRay));
+  // By area (squareToUniformSphere).
+  const batch z = 1.0f - 2.0f * u1, r = xsimd::sqrt(xsimd::max(batch(0.0f), 1.0f - z * z));
+  const V3 areaRadial{r * sc.second, r * sc.first, z};
+  const V3 radial = select(inCone, coneRadial, areaRadial);
+  out.point = center + radial * radius;
+  out.normal = select(flipped, -radial, radial);
+  out.cone = inCone;
+  out.coneDensity = gatherLanes(lights.probability.data(), light) / (batch(2 * kPi) * cone);
+}
+
 }  // namespace
 
 bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots,
@@ -56,7 +116,7 @@ bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, co
   if (ctx.maxDepth >= 0 && depth >= uint32_t(ctx.maxDepth)) return false;
   const uint64_t key = paths.key[id];
   uint32_t light;
-  if (!ctx.lights.pickTriangle(drawDouble(ctx, key, bounceDim(depth, kLightPick)), light)) return false;
+  if (!ctx.lights.pickPacketLight(drawDouble(ctx, key, bounceDim(depth, kLightPick)), light)) return false;
 
   const size_t j = count_++;
   slot_[j] = int32_t(k);
@@ -64,6 +124,7 @@ bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, co
   triangle_[j] = int32_t(tri);
   light_[j] = int32_t(light);
   in_[kSmooth][j] = mesh.smooth[tri] != 0 ? 1.0f : 0.0f;
+  in_[kSphereLight][j] = ctx.lights.packetLights().kind[light] == kSpherePacketLight ? 1.0f : 0.0f;
   in_[kReflectanceR][j] = m.reflectance.value.x;
   in_[kReflectanceG][j] = m.reflectance.value.y;
   in_[kReflectanceB][j] = m.reflectance.value.z;
@@ -90,7 +151,7 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
     slot_[j] = slot_[0], path_[j] = path_[0], triangle_[j] = triangle_[0], light_[j] = light_[0];
   const TriangleSoup& mesh = ctx.scene.mesh;
   const bool meshHasNormals = mesh.nx.size() == mesh.vertexCount();  // the loader gives every vertex one
-  const TriangleLightQueue& lights = ctx.lights.triangleLights();
+  const PacketLightQueue& lights = ctx.lights.packetLights();
   const auto* v0 = reinterpret_cast<const int32_t*>(mesh.v0.data());
   const auto* v1 = reinterpret_cast<const int32_t*>(mesh.v1.data());
   const auto* v2 = reinterpret_cast<const int32_t*>(mesh.v2.data());
@@ -132,20 +193,29 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
     const V3 throughput = gather3(paths.throughputR, paths.throughputG, paths.throughputB, path);
     const V3 reflectance{get(kReflectanceR), get(kReflectanceG), get(kReflectanceB)};
 
-    // Next-event estimation (connectToLight with sampleTriangle and the diffuse lobe).
+    // Next-event estimation (connectToLight with sampleTriangle or sampleSphere and the
+    // diffuse lobe). A batch with both kinds of light computes both and keeps each lane's.
     const batch u1 = get(kULight1), u2 = get(kULight2);
-    const lanes lower = u1 < u2;
-    const batch lb1 = xsimd::select(lower, u1 * 0.5f, u1 - u2 * 0.5f);
-    const batch lb2 = xsimd::select(lower, u2 - u1 * 0.5f, u2 * 0.5f);
-    const V3 lightPoint = gather3(lights.aX, lights.aY, lights.aZ, light) * (1.0f - lb1 - lb2) +
-                          gather3(lights.bX, lights.bY, lights.bZ, light) * lb1 +
-                          gather3(lights.cX, lights.cY, lights.cZ, light) * lb2;
+    const lanes sphereLit = get(kSphereLight) != batch(0.0f);
+    LanePacketLight sampled{zero, zero, lanes(false), batch(0.0f)};
+    if (xsimd::any(~sphereLit)) triangleLightPoints(lights, light, u1, u2, sampled);
+    if (xsimd::any(sphereLit)) {
+      LanePacketLight sphere;
+      sphereLightPoints(lights, light, position, u1, u2, sphere);
+      sampled.point = select(sphereLit, sphere.point, sampled.point);
+      sampled.normal = select(sphereLit, sphere.normal, sampled.normal);
+      sampled.cone = sphere.cone & sphereLit;
+      sampled.coneDensity = sphere.coneDensity;
+    }
+    const V3 lightPoint = sampled.point, lightNormal = sampled.normal;
     const V3 toLight = lightPoint - position;
     const batch dist2 = dot(toLight, toLight);
     const V3 lightDir = toLight / xsimd::sqrt(dist2);
-    const V3 lightNormal = gather3(lights.normalX, lights.normalY, lights.normalZ, light);
     const batch cosLight = -dot(lightNormal, lightDir);
-    const batch lightPdf = gather(lights.pdfArea, light) * dist2 / cosLight;
+    // Solid-angle density, and the light point's density per unit area (LightSample::pdfLight).
+    const batch pdfArea = gather(lights.pdfArea, light);
+    const batch lightPdf = xsimd::select(sampled.cone, sampled.coneDensity, pdfArea * dist2 / cosLight);
+    const batch lightPdfArea = xsimd::select(sampled.cone, lightPdf * cosLight / dist2, pdfArea);
     const batch cosOut = dot(lightDir, frame.n) * flip;
     const V3 f = reflectance * (cosOut * kInvPi);
     const batch bsdfPdf = cosOut * kInvPi;
@@ -161,6 +231,8 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
     put(kNeeMis, mis);
     put(kNeeBsdfPdf, bsdfPdf);
     put3(kLightPx, lightPoint);
+    put3(kLightNx, lightNormal);
+    put(kNeeLightPdf, lightPdfArea);
     put3(kNeeR, throughput * contribution);
     const LaneShadowSegment shadow = shadowSegment(position, ng, lightPoint, lightNormal);
     put3(kShadowOx, shadow.origin);
@@ -212,11 +284,11 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
       if (recording) {
         slots.neeWeight[k] = out_[kNeeMis][j];
         slots.neeBsdfPdf[k] = out_[kNeeBsdfPdf][j];
-        slots.neeLightPdf[k] = lights.pdfArea[size_t(light_[j])];
+        slots.neeLightPdf[k] = out_[kNeeLightPdf][j];
         slots.neeLightKind[k] = kLightVertex;
         slots.neeLightEmitter[k] = lights.emitter[size_t(light_[j])];
         slots.neeLightSet(k, get3(kLightPx, j));
-        slots.neeLightNSet(k, lights.normalAt(size_t(light_[j])));
+        slots.neeLightNSet(k, get3(kLightNx, j));
       }
     } else {
       slots.neeSet(k, Color(0.0f));

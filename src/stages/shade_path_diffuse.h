@@ -1,5 +1,5 @@
 // The path tracer's shade stage for its commonest hit, in vector lanes: a path tracer spends
-// most of its shading on plain diffuse triangles lit by triangle lights, and the scalar body
+// most of its shading on plain diffuse triangles lit by area lights, and the scalar body
 // (stageShadePath) runs their surface reconstruction, light sample, BSDF evaluation, MIS
 // weight and cosine-weighted bounce one path at a time, each a chain of dependent divisions,
 // square roots and sin/cos. A packet collects such slots (their queue indices), then gathers
@@ -21,7 +21,8 @@ class DiffuseShadePacket {
 
   // Takes slot k when its hit qualifies: a non-emitting mesh triangle whose
   // material is diffuse without textures or frame maps, below the depth limit, and the light
-  // choice of its random numbers falls on a triangle. False: the scalar body shades it.
+  // choice of its random numbers falls on a triangle or a sphere. False: the scalar body
+  // shades it.
   bool add(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots, const HitQueue& hits,
            size_t k);
   bool full() const { return count_ == kCapacity; }
@@ -37,9 +38,10 @@ class DiffuseShadePacket {
   alignas(64) int32_t slot_[kCapacity] = {};      // the slot in the ray, hit and slot queues
   alignas(64) int32_t path_[kCapacity] = {};      // its path in the path queue
   alignas(64) int32_t triangle_[kCapacity] = {};  // the triangle hit
-  alignas(64) int32_t light_[kCapacity] = {};     // the light's row in LightSampler::triangleLights()
+  alignas(64) int32_t light_[kCapacity] = {};     // the light's row in LightSampler::packetLights()
   enum In {
     kSmooth,  // 1: interpolate the vertex normals
+    kSphereLight,  // 1: the light is a sphere (else a triangle)
     kReflectanceR, kReflectanceG, kReflectanceB,
     kTwoSided,
     kULight1, kULight2, kUBsdf1, kUBsdf2,  // drawn in lanes from drawOffset_, in this order
@@ -52,7 +54,8 @@ class DiffuseShadePacket {
     kPx, kPy, kPz,                                // the hit point
     kRayOx, kRayOy, kRayOz, kRayDx, kRayDy, kRayDz,
     // What seed recording keeps of the hit and its connection.
-    kNgx, kNgy, kNgz, kNsx, kNsy, kNsz, kNeeMis, kNeeBsdfPdf, kLightPx, kLightPy, kLightPz,
+    kNgx, kNgy, kNgz, kNsx, kNsy, kNsz, kNeeMis, kNeeBsdfPdf, kLightPx, kLightPy, kLightPz, kLightNx, kLightNy,
+    kLightNz, kNeeLightPdf,
     kOutCount
   };
   alignas(64) float in_[kInCount][kCapacity] = {};
