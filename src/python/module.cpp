@@ -385,7 +385,7 @@ PyResult renderScene(const PyScene& scene, const py::object& integrator, const p
   worker.join();
   if (!failure) deliverPasses();
   // A render shorter than one wait still reports where it ended (1 when it finished).
-  if (!failure && !progress.is_none() && fraction != reported && !callbackFailure) {
+  if (!failure && !interrupted && !progress.is_none() && fraction != reported && !callbackFailure) {
     try {
       progress(double(fraction));
     } catch (...) {

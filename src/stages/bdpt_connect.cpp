@@ -83,15 +83,14 @@ struct MisBuilder {
   }
 };
 
-// The BSDFs of a subpath's vertices: all of them, or (`only` >= 1) vertex only - 1's alone;
-// and for each vertex j >= 1 with one, the direction back to vertex j - 1, in world and local
-// coordinates.
+// The BSDFs of a subpath's vertices: all of them (`only` < 0), or vertex only - 1's alone (none
+// for only = 0); and for each vertex j >= 1 with one, the direction back to vertex j - 1 in its
+// frame.
 void prepareSubpath(const Scene& scene, const std::vector<BdptVertex>& subpath, int only, std::vector<VertexBsdf>& bsdf,
-                    std::vector<Vec3>& back, std::vector<Vec3>& backLocal) {
+                    std::vector<Vec3>& backLocal) {
   // Grown, never shrunk: a resize to each sample's lengths constructed the rows again.
   if (bsdf.size() < subpath.size()) {
     bsdf.resize(subpath.size());
-    back.resize(subpath.size());
     backLocal.resize(subpath.size());
   }
   for (size_t j = 0; j < subpath.size(); ++j) {
@@ -102,10 +101,7 @@ void prepareSubpath(const Scene& scene, const std::vector<BdptVertex>& subpath, 
     // Constructed in place (VertexBsdf is trivially destructible): an assignment copied each
     // vertex's BSDF, colours and all, once more.
     new (&bsdf[j]) VertexBsdf(vertexBsdf(scene, subpath[j]));
-    if (j >= 1 && bsdf[j].material) {
-      back[j] = directionTo(subpath[j], subpath[j - 1]);
-      backLocal[j] = bsdf[j].frame.toLocal(back[j]);
-    }
+    if (j >= 1 && bsdf[j].material) backLocal[j] = bsdf[j].frame.toLocal(directionTo(subpath[j], subpath[j - 1]));
   }
 }
 
@@ -182,8 +178,8 @@ void stageBdptConnect(const BdptContext& ctx, const BdptSubpaths& paths, BdptCon
     // A sample of one strategy (s, t) reads only light[s - 1]'s BSDF and cam[t - 1]'s: the
     // others are left without a material, so that they read as not connectable (no strategy
     // that keep() refuses would reach them anyway).
-    prepareSubpath(scene, light, sampleS, lightBsdf, scratch.lightBack, scratch.lightBackLocal);
-    prepareSubpath(scene, cam, sampleT, cameraBsdf, scratch.cameraBack, scratch.cameraBackLocal);
+    prepareSubpath(scene, light, sampleS, lightBsdf, scratch.lightBackLocal);
+    prepareSubpath(scene, cam, sampleT, cameraBsdf, scratch.cameraBackLocal);
     const int nL = int(light.size()), nC = int(cam.size());
     const uint32_t sample = uint32_t(i);
 

@@ -71,9 +71,9 @@ struct BdptConnectScratch {
   std::vector<BdptVertexQueue::Row> light, camera;
   std::vector<VertexBsdf> lightBsdf, cameraBsdf;
   // Per vertex j >= 1 with a BSDF: the unit direction towards vertex j - 1 of its subpath (the
-  // camera side for a camera vertex, the light side for a light vertex), in world and in the
-  // vertex's frame, shared by all the vertex's connections.
-  std::vector<Vec3> lightBack, lightBackLocal, cameraBack, cameraBackLocal;
+  // camera side for a camera vertex, the light side for a light vertex) in the vertex's frame,
+  // shared by all the vertex's connections.
+  std::vector<Vec3> lightBackLocal, cameraBackLocal;
   std::vector<int32_t> lightIndex, cameraIndex;
   std::vector<float> cameraDensity, lightDensity;
   std::vector<uint8_t> specular;

@@ -75,10 +75,12 @@ void sphereLightPoints(const PacketLightQueue& lights, const indices& light, con
   const lanes flipped = gatherLanes(lights.flipped.data(), light) != batch(0.0f);
   const V3 toCenter = center - ref;
   const batch dist2 = dot(toCenter, toCenter), r2 = radius * radius;
-  const lanes inCone = ~flipped & (dist2 > r2 * 1.0001f);
   const batch sin2Max = r2 / dist2;
   const batch cosMax = xsimd::sqrt(xsimd::max(batch(0.0f), 1.0f - sin2Max));
-  const batch cone = xsimd::select(inCone, sin2Max / (1.0f + cosMax), batch(0.0f));
+  const batch coneOutside = sin2Max / (1.0f + cosMax);
+  // sphereCone's test; a cone that rounds to 0 (a sphere too small to see) is sampled by area.
+  const lanes inCone = ~flipped & (dist2 > r2 * 1.0001f) & (coneOutside > batch(0.0f));
+  const batch cone = xsimd::select(inCone, coneOutside, batch(0.0f));
   const auto sc = xsimd::sincos(batch(2 * kPi) * u2);
   // In the cone (the float solve of sampleSphere, cancellation-free near the silhouette).
   const batch dc = xsimd::sqrt(dist2);
