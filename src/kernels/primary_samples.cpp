@@ -24,6 +24,7 @@ PrimarySamples::PrimarySamples(size_t chains, double smallStep, bool lightSubpat
       currentMask_(chains * maskWords_),
       proposedMask_(chains * maskWords_),
       attemptKey_(chains),
+      lightKey_(chains),
       large_(chains) {}
 
 uint32_t PrimarySamples::slotOf(uint64_t stream, uint32_t dim) const {
@@ -41,6 +42,7 @@ uint32_t PrimarySamples::slotOf(uint64_t stream, uint32_t dim) const {
 
 void PrimarySamples::propose(size_t c, uint64_t attemptKey, bool large) {
   attemptKey_[c] = attemptKey;
+  lightKey_[c] = mix64(attemptKey ^ kLightSubpathStream);
   large_[c] = large;
   for (uint32_t w = 0; w < maskWords_; ++w) proposedMask_[c * maskWords_ + w] = 0;
 }
@@ -62,7 +64,7 @@ uint64_t PrimarySamples::smallStepOffset(uint64_t random) const {
 uint64_t PrimarySamples::bits(uint64_t stream, uint32_t dim) {
   const size_t c = chainOf(stream);
   // The light subpath's numbers come from another stream of the attempt than the camera's.
-  const uint64_t key = (stream & kLightSubpathStream) ? mix64(attemptKey_[c] ^ kLightSubpathStream) : attemptKey_[c];
+  const uint64_t key = (stream & kLightSubpathStream) ? lightKey_[c] : attemptKey_[c];
   const uint32_t slot = slotOf(stream, dim);
   if (slot >= slots_) return uniformBits(key, dim);
   const size_t at = c * slots_ + slot;

@@ -71,6 +71,7 @@ class PrimarySamples {
   std::vector<uint64_t> current_, proposed_;          // chain c's slot s at c * slots_ + s
   std::vector<uint64_t> currentMask_, proposedMask_;  // maskWords_ per chain
   std::vector<uint64_t> attemptKey_;
+  std::vector<uint64_t> lightKey_;  // the attempt's light-subpath stream, hashed once per proposal
   std::vector<uint8_t> large_;
 };
 
