@@ -46,17 +46,13 @@ struct VertexBsdf {
   SurfaceColors colors;
   // The vertex a BSDF sample or connection can leave from (not a pure Dirac material).
   bool connectable() const { return material && !material->isPureSpecular(); }
-  // f(towardCamera, towardLight) |cos(towardLight)|, radiance transport, Dirac lobes excluded.
-  Color eval(Vec3 towardCamera, Vec3 towardLight) const {
-    return bsdfEval(*material, colors, frame.toLocal(towardCamera), frame.toLocal(towardLight));
-  }
   // Solid-angle density of sampling `to` arriving from `from` (either side).
   float pdf(Vec3 from, Vec3 to) const { return bsdfPdf(*material, colors, frame.toLocal(from), frame.toLocal(to)); }
   // A connection's three numbers from directions already in the vertex's frame (each
-  // direction is taken to local coordinates once, not once per number): eval(towardCamera,
-  // towardLight), and the densities pdf(towardCamera, towardLight) and pdf(towardLight,
-  // towardCamera). The same bits as the three calls above. Returns false (and only f is set)
-  // when f is black: the connection carries nothing and needs no density.
+  // direction is taken to local coordinates once, not once per number): f(towardCamera,
+  // towardLight) |cos(towardLight)| (radiance transport, Dirac lobes excluded), and the
+  // densities pdf(towardCamera, towardLight) and pdf(towardLight, towardCamera). Returns false
+  // (and only f is set) when f is black: the connection carries nothing and needs no density.
   bool connection(Vec3 towardCameraLocal, Vec3 towardLightLocal, Color& f, float& pdfToLight,
                   float& pdfToCamera) const {
     f = bsdfEval(*material, colors, towardCameraLocal, towardLightLocal);
