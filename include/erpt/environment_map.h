@@ -50,6 +50,22 @@ class EnvironmentMap {
   void directionToUv(Vec3 direction, float& u, float& v) const;
   Vec3 uvToDirection(float u, float v) const;
 
+  // The map's tables as the vector kernels read them (kernels/environment_map_lanes.h), which
+  // compute what sample() and evalAndPdf() compute, eight directions at a time.
+  struct Tables {
+    int width, height;
+    const float* radiance;     // 3 floats per pixel: the scaled radiance, row-major, row 0 = +y
+    const float* weight;       // per pixel: the pdf's bilinear weights (weight_)
+    const float* rowCdf;       // height + 1 entries
+    const float* columnCdf;    // per row: width + 1 entries
+    const uint32_t* rowGuide;  // rowBuckets + 1 entries
+    const uint32_t* columnGuide;  // per row: columnBuckets + 1 entries
+    int rowBuckets, columnBuckets;
+    const Vec3* toWorld;  // rotation rows
+    const Vec3* toLocal;
+  };
+  Tables tables() const;
+
  private:
   // The four pixels around a point of the map and their bilinear weights.
   struct Bilinear {

@@ -142,6 +142,22 @@ void EnvironmentMap::directionToUv(Vec3 direction, float& u, float& v, float& si
   sinTheta = std::sqrt(std::max(0.0f, 1 - y * y));
 }
 
+EnvironmentMap::Tables EnvironmentMap::tables() const {
+  static_assert(sizeof(Color) == 3 * sizeof(float), "a pixel is three packed floats");
+  return {width_,
+          height_,
+          &pixels_[0].x,
+          weight_.data(),
+          rowCdf_.data(),
+          columnCdf_.data(),
+          rowGuide_.data(),
+          columnGuide_.data(),
+          int(rowBuckets_),
+          int(columnBuckets_),
+          toWorld_,
+          toLocal_};
+}
+
 Vec3 EnvironmentMap::uvToDirection(float u, float v) const {
   const float phi = 2 * kPi * u, theta = kPi * v;
   const float sinTheta = std::sin(theta);

@@ -101,6 +101,14 @@ LightSampler::LightSampler(const Scene& scene) : scene_(scene) {
       row.radius = scene.spheres.radius[sphere];
       row.flipped = scene.spheres.flipped[sphere] ? 1.0f : 0.0f;
       row.emitter = scene.spheres.emitter[sphere];
+    } else if (item.kind == Kind::Environment && environment_ == &scene.emitters[item.index]) {
+      row.kind = kEnvironmentPacketLight;
+      row.emitter = int32_t(item.index);
+      row.probability = itemProbability(i);
+      row.radiance = environment_->radiance;
+      hasPacketLights_ = true;
+      packetLights_.setRow(i, row);
+      continue;
     } else {
       packetLights_.setRow(i, row);
       continue;

@@ -16,8 +16,8 @@
 #include "models/surface.h"
 
 // A light item as the vector shading kernels sample it, one row per item: a triangle as
-// sampleTriangle reads it, a sphere as sampleSphere does (kind 0: an item they leave to
-// sample()).
+// sampleTriangle reads it, a sphere as sampleSphere does, the environment as sample() does
+// (its map is LightSampler::sampledEnvironment()'s; kind 0: an item they leave to sample()).
 #define ERPT_PACKET_LIGHT_FIELDS(F, V, C)                                                           \
   F(int32_t, kind, 0, "PacketLightKind")                                                            \
   V(a, "triangle: corner 0; sphere: centre")                                                        \
@@ -26,14 +26,19 @@
   V(normal, "triangle: unit face normal")                                                           \
   F(float, radius, 0, "sphere: radius")                                                             \
   F(float, flipped, 0, "sphere: 1 when it emits inwards (sampled by area)")                         \
-  C(radiance, "emitted radiance")                                                                   \
+  C(radiance, "emitted radiance (an environment without a map: its constant radiance)")             \
   F(float, probability, 0, "p_light, the item's pick probability")                                  \
   F(float, pdfArea, 0, "area density of sampling a point of it by area, p_light / area")            \
   F(int32_t, emitter, -1, "index into Scene::emitters (-1: not a packet light)")
 
 namespace erpt {
 
-enum PacketLightKind : int32_t { kNoPacketLight = 0, kTrianglePacketLight = 1, kSpherePacketLight = 2 };
+enum PacketLightKind : int32_t {
+  kNoPacketLight = 0,
+  kTrianglePacketLight = 1,
+  kSpherePacketLight = 2,
+  kEnvironmentPacketLight = 3
+};
 
 ERPT_SOA_STRUCT(PacketLightQueue, ERPT_PACKET_LIGHT_FIELDS)
 
@@ -98,16 +103,18 @@ class LightSampler {
   Color emitted(const SurfacePoint& sp, Vec3 w) const;
   const Scene& scene() const { return scene_; }
 
-  // sample()'s light choice when it falls on a triangle or a sphere, for kernels that finish
-  // the sample themselves (shade_path_diffuse.cpp): the light's row in packetLights(). False
-  // when uPick picks any other kind of light.
+  // sample()'s light choice when it falls on a triangle, a sphere or the environment, for
+  // kernels that finish the sample themselves (shade_path_diffuse.cpp): the light's row in
+  // packetLights(). False when uPick picks any other kind of light.
   bool pickPacketLight(double uPick, uint32_t& row) const;
   // One row per light item (kind 0 for items that are neither triangles nor spheres), so that
   // kernels can gather a packet's lights in vector lanes.
   const PacketLightQueue& packetLights() const { return packetLights_; }
-  // Whether pickPacketLight can ever succeed (some light is a triangle or a sphere), so that
-  // kernels on scenes lit only otherwise need not try it for every hit.
+  // Whether pickPacketLight can ever succeed (some light is a triangle, a sphere or the
+  // environment), so that kernels on scenes lit only otherwise need not try it for every hit.
   bool hasPacketLights() const { return hasPacketLights_; }
+  // The environment emitter sample() can pick (nullptr: none).
+  const Emitter* sampledEnvironment() const { return environment_; }
 
   // Emission sampling (light_emission.cpp): a light by power (the same choice as sample()),
   // a point on it and a direction, with their densities. False when it carries nothing.

@@ -6,6 +6,7 @@
 #include "kernels/surface_vertex.h"
 #include "core/rng.h"
 #include "stages/shade_path_diffuse.h"
+#include "stages/shade_path_miss.h"
 #include "stages/stages.h"
 #include "tracer/tracer.h"
 
@@ -15,20 +16,19 @@ namespace {
 
 void addRadiance(PathQueue& p, uint32_t id, Color c) { p.radianceSet(id, p.radianceAt(id) + c); }
 
-// Far point standing in for the environment along a direction (for seed vertices).
-Vec3 environmentPoint(Vec3 from, Vec3 dir) { return from + dir * 1e6f; }
-
 }  // namespace
 
 void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& slots, RayQueue& rays,
                     const HitQueue& hits, RayQueue& shadowRays, VertexHistory history, IndexRange range) {
   const Emitter* env = ctx.scene.environment();
   const bool recording = history.vertices != nullptr;
-  // Plain diffuse hits go to the vector kernel, a packet at a time; the rest run the body below.
-  // On scenes without triangle or sphere lights no hit qualifies, and trying each would cost a
-  // light pick.
+  // Plain diffuse hits go to the vector kernel, a packet at a time, and so do rays escaping
+  // into an environment map; the rest run the body below. On scenes without triangle, sphere or
+  // environment lights no hit qualifies, and trying each would cost a light pick.
   const bool vector = ctx.vectorShading && ctx.lights.hasPacketLights();
   DiffuseShadePacket diffuse;
+  EnvironmentMissPacket misses(ctx);
+  const bool vectorMisses = ctx.vectorShading && misses.active();
   for (size_t k = range.begin; k < range.end; ++k) {
     if (vector && diffuse.add(ctx, paths, slots, hits, k)) {
       if (diffuse.full()) diffuse.shade(ctx, paths, slots, rays, hits, shadowRays, history);
@@ -55,21 +55,14 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     }
     if (hits.geomID[k] == kNoHit) {
       if (!env || int(depth) < ctx.minSegments) continue;
+      if (vectorMisses) {
+        misses.add(k);
+        if (misses.full()) misses.shade(ctx, paths, slots, rays, history);
+        continue;
+      }
       float lightPdf;
       const Color le = ctx.lights.environmentRadianceAndPdf(*env, dir, lightPdf);
-      const float w = emitterHitWeight(prevPdf, lightPdf);
-      addRadiance(paths, id, throughput * le * w);
-      if (recording) {
-        VertexQueue::Row v;  // the whole row: pdfForward 0 and the parent link are written too
-        v.p = environmentPoint(prev, dir);
-        v.ns = v.ng = -dir;
-        v.kind = kEnvironmentVertex;
-        v.emitter = int32_t(env - ctx.scene.emitters.data());
-        v.parent = paths.lastVertex[id];
-        history.vertices->setRow(vertex, v);
-        slots.emitWeight[k] = w;
-        slots.emitSet(k, throughput * le);
-      }
+      finishEnvironmentMiss(ctx, paths, slots, rays, history, k, *env, le, lightPdf);
       continue;
     }
     const SurfacePoint sp = surfaceAt(ctx.scene, hits.primID[k], hits.u[k], hits.v[k]);
@@ -142,6 +135,7 @@ void stageShadePath(const StageContext& ctx, PathQueue& paths, PathSlotQueue& sl
     slots.alive[k] = 1;
   }
   diffuse.shade(ctx, paths, slots, rays, hits, shadowRays, history);
+  misses.shade(ctx, paths, slots, rays, history);
 }
 
 void stageShadowResolve(const RayQueue& shadowRays, const PathSlotQueue& slots, PathQueue& paths, IndexRange range) {

@@ -1,7 +1,8 @@
 // The diffuse shade kernel (shade_path_diffuse.h): gather, vector body, scatter. Every
 // formula mirrors the scalar code it replaces for these hits: triangleSurfaceAt, Frame,
-// LightSampler::sampleTriangle / sampleSphere / finishAreaSample, connectToLight, the diffuse lobe of
-// bsdfEval / bsdfPdf / bsdfSample, offsetOrigin and the roulette of stageShadePath.
+// LightSampler::sampleTriangle / sampleSphere / finishAreaSample and its environment sample
+// (kernels/environment_map_lanes.h), connectToLight, the diffuse lobe of bsdfEval / bsdfPdf /
+// bsdfSample, offsetOrigin and the roulette of stageShadePath.
 #include "stages/shade_path_diffuse.h"
 
 #include <limits>
@@ -9,6 +10,8 @@
 #include <xsimd/xsimd.hpp>
 
 #include "core/rng.h"
+#include "core/warp.h"
+#include "kernels/environment_map_lanes.h"
 #include "kernels/lane_gather.h"
 #include "kernels/lane_vec3.h"
 #include "kernels/surface_vertex.h"
@@ -102,6 +105,21 @@ void sphereLightPoints(const PacketLightQueue& lights, const indices& light, con
   out.coneDensity = gatherLanes(lights.probability.data(), light) / (batch(2 * kPi) * cone);
 }
 
+// sample()'s environment: a direction from the map's importance sampling, or uniform on the
+// sphere for a constant one (squareToUniformSphere), with its radiance and the map's density.
+LaneEnvironmentSample environmentLightDirections(const EnvironmentMap* map, const EnvironmentMap::Tables& tables,
+                                                 const PacketLightQueue& lights, const indices& light, const batch& u1,
+                                                 const batch& u2) {
+  if (map) return sampleEnvironmentLanes(tables, u1, u2);
+  const batch z = 1.0f - 2.0f * u1, r = xsimd::sqrt(xsimd::max(batch(0.0f), 1.0f - z * z));
+  const auto sc = xsimd::sincos(batch(2 * kPi) * u2);
+  return {{r * sc.second, r * sc.first, z},
+          {gatherLanes(lights.radianceR.data(), light), gatherLanes(lights.radianceG.data(), light),
+           gatherLanes(lights.radianceB.data(), light)},
+          batch(kUniformSpherePdf),
+          lanes(true)};
+}
+
 }  // namespace
 
 bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots,
@@ -126,7 +144,7 @@ bool DiffuseShadePacket::add(const StageContext& ctx, const PathQueue& paths, co
   triangle_[j] = int32_t(tri);
   light_[j] = int32_t(light);
   in_[kSmooth][j] = mesh.smooth[tri] != 0 ? 1.0f : 0.0f;
-  in_[kSphereLight][j] = ctx.lights.packetLights().kind[light] == kSpherePacketLight ? 1.0f : 0.0f;
+  in_[kLightKind][j] = float(ctx.lights.packetLights().kind[light]);
   in_[kReflectanceR][j] = m.reflectance.value.x;
   in_[kReflectanceG][j] = m.reflectance.value.y;
   in_[kReflectanceB][j] = m.reflectance.value.z;
@@ -154,6 +172,9 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
   const TriangleSoup& mesh = ctx.scene.mesh;
   const bool meshHasNormals = mesh.nx.size() == mesh.vertexCount();  // the loader gives every vertex one
   const PacketLightQueue& lights = ctx.lights.packetLights();
+  const Emitter* environment = ctx.lights.sampledEnvironment();
+  const EnvironmentMap* map = environment ? environment->map.get() : nullptr;
+  const EnvironmentMap::Tables mapTables = map ? map->tables() : EnvironmentMap::Tables{};
   const auto* v0 = reinterpret_cast<const int32_t*>(mesh.v0.data());
   const auto* v1 = reinterpret_cast<const int32_t*>(mesh.v1.data());
   const auto* v2 = reinterpret_cast<const int32_t*>(mesh.v2.data());
@@ -195,12 +216,16 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
     const V3 throughput = gather3(paths.throughputR, paths.throughputG, paths.throughputB, path);
     const V3 reflectance{get(kReflectanceR), get(kReflectanceG), get(kReflectanceB)};
 
-    // Next-event estimation (connectToLight with sampleTriangle or sampleSphere and the
-    // diffuse lobe). A batch with both kinds of light computes both and keeps each lane's.
+    // Next-event estimation (connectToLight with sampleTriangle, sampleSphere or the
+    // environment, and the diffuse lobe). A batch with several kinds of light computes each
+    // kind's sample and keeps each lane's.
     const batch u1 = get(kULight1), u2 = get(kULight2);
-    const lanes sphereLit = get(kSphereLight) != batch(0.0f);
+    const batch lightKind = get(kLightKind);
+    const lanes triangleLit = lightKind == batch(float(kTrianglePacketLight));
+    const lanes sphereLit = lightKind == batch(float(kSpherePacketLight));
+    const lanes environmentLit = lightKind == batch(float(kEnvironmentPacketLight));
     LanePacketLight sampled{zero, zero, lanes(false), batch(0.0f)};
-    if (xsimd::any(~sphereLit)) triangleLightPoints(lights, light, u1, u2, sampled);
+    if (xsimd::any(triangleLit)) triangleLightPoints(lights, light, u1, u2, sampled);
     if (xsimd::any(sphereLit)) {
       LanePacketLight sphere;
       sphereLightPoints(lights, light, position, u1, u2, sphere);
@@ -209,23 +234,35 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
       sampled.cone = sphere.cone & sphereLit;
       sampled.coneDensity = sphere.coneDensity;
     }
-    const V3 lightPoint = sampled.point, lightNormal = sampled.normal;
-    const V3 toLight = lightPoint - position;
+    V3 radiance = gather3(lights.radianceR, lights.radianceG, lights.radianceB, light);
+    const V3 toLight = sampled.point - position;
     const batch dist2 = dot(toLight, toLight);
-    const V3 lightDir = toLight / xsimd::sqrt(dist2);
-    const batch cosLight = -dot(lightNormal, lightDir);
+    V3 lightDir = toLight / xsimd::sqrt(dist2);
+    batch cosLight = -dot(sampled.normal, lightDir);
     // Solid-angle density, and the light point's density per unit area (LightSample::pdfLight).
     const batch pdfArea = gather(lights.pdfArea, light);
-    const batch lightPdf = xsimd::select(sampled.cone, sampled.coneDensity, pdfArea * dist2 / cosLight);
-    const batch lightPdfArea = xsimd::select(sampled.cone, lightPdf * cosLight / dist2, pdfArea);
+    batch lightPdf = xsimd::select(sampled.cone, sampled.coneDensity, pdfArea * dist2 / cosLight);
+    batch lightPdfArea = xsimd::select(sampled.cone, lightPdf * cosLight / dist2, pdfArea);
+    lanes reaches = (dist2 > batch(0.0f)) & (cosLight > batch(0.0f));
+    V3 lightPoint = sampled.point, lightNormal = sampled.normal;
+    if (xsimd::any(environmentLit)) {
+      // A direction, no point: the recorded light vertex stands far along it (as
+      // stageShadePath's environmentPoint), facing back; the density is a solid angle's.
+      const LaneEnvironmentSample sky = environmentLightDirections(map, mapTables, lights, light, u1, u2);
+      lightDir = select(environmentLit, sky.direction, lightDir);
+      radiance = select(environmentLit, sky.radiance, radiance);
+      lightPdf = xsimd::select(environmentLit, gather(lights.probability, light) * sky.pdf, lightPdf);
+      lightPdfArea = xsimd::select(environmentLit, lightPdf, lightPdfArea);
+      reaches = (environmentLit & sky.ok) | (~environmentLit & reaches);
+      lightPoint = select(environmentLit, position + sky.direction * 1e6f, lightPoint);
+      lightNormal = select(environmentLit, -sky.direction, lightNormal);
+    }
     const batch cosOut = dot(lightDir, frame.n) * flip;
     const V3 f = reflectance * (cosOut * kInvPi);
     const batch bsdfPdf = cosOut * kInvPi;
-    const lanes connects =
-        seen & (dist2 > batch(0.0f)) & (cosLight > batch(0.0f)) & (cosOut > batch(0.0f)) & ~isBlack(f);
+    const lanes connects = seen & reaches & (cosOut > batch(0.0f)) & ~isBlack(f);
     const batch a2 = lightPdf * lightPdf, p2b = bsdfPdf * bsdfPdf;
     const batch mis = xsimd::select(a2 + p2b > batch(0.0f), a2 / (a2 + p2b), batch(0.0f));
-    const V3 radiance = gather3(lights.radianceR, lights.radianceG, lights.radianceB, light);
     const V3 contribution = f * radiance * (mis / lightPdf);
     putMask(kNeeOk, connects);
     put3(kNgx, ng);
@@ -236,7 +273,12 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
     put3(kLightNx, lightNormal);
     put(kNeeLightPdf, lightPdfArea);
     put3(kNeeR, throughput * contribution);
-    const LaneShadowSegment shadow = shadowSegment(position, ng, lightPoint, lightNormal);
+    LaneShadowSegment shadow = shadowSegment(position, ng, sampled.point, sampled.normal);
+    if (xsimd::any(environmentLit)) {  // towards infinity (connectToLight)
+      shadow.origin = select(environmentLit, offsetOrigin(position, ng, lightDir), shadow.origin);
+      shadow.direction = select(environmentLit, lightDir, shadow.direction);
+      shadow.tfar = xsimd::select(environmentLit, batch(std::numeric_limits<float>::infinity()), shadow.tfar);
+    }
     put3(kShadowOx, shadow.origin);
     put3(kShadowDx, shadow.direction);
     put(kShadowTfar, shadow.tfar);
@@ -287,7 +329,7 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
         slots.neeWeight[k] = out_[kNeeMis][j];
         slots.neeBsdfPdf[k] = out_[kNeeBsdfPdf][j];
         slots.neeLightPdf[k] = out_[kNeeLightPdf][j];
-        slots.neeLightKind[k] = kLightVertex;
+        slots.neeLightKind[k] = in_[kLightKind][j] == float(kEnvironmentPacketLight) ? kEnvironmentVertex : kLightVertex;
         slots.neeLightEmitter[k] = lights.emitter[size_t(light_[j])];
         slots.neeLightSet(k, get3(kLightPx, j));
         slots.neeLightNSet(k, get3(kLightNx, j));

@@ -21,8 +21,8 @@ class DiffuseShadePacket {
 
   // Takes slot k when its hit qualifies: a non-emitting mesh triangle whose
   // material is diffuse without textures or frame maps, below the depth limit, and the light
-  // choice of its random numbers falls on a triangle or a sphere. False: the scalar body
-  // shades it.
+  // choice of its random numbers falls on a triangle, a sphere or the environment. False: the
+  // scalar body shades it.
   bool add(const StageContext& ctx, const PathQueue& paths, const PathSlotQueue& slots, const HitQueue& hits,
            size_t k);
   bool full() const { return count_ == kCapacity; }
@@ -41,7 +41,7 @@ class DiffuseShadePacket {
   alignas(64) int32_t light_[kCapacity] = {};     // the light's row in LightSampler::packetLights()
   enum In {
     kSmooth,  // 1: interpolate the vertex normals
-    kSphereLight,  // 1: the light is a sphere (else a triangle)
+    kLightKind,  // the light's PacketLightKind
     kReflectanceR, kReflectanceG, kReflectanceB,
     kTwoSided,
     kULight1, kULight2, kUBsdf1, kUBsdf2,  // drawn in lanes from drawOffset_, in this order

@@ -10,6 +10,7 @@
 #include "erpt/scene_loader.h"
 #include "stages/stages.h"
 #include "tracer/tracer.h"
+#include "support/shade_queues.h"
 #include "support/test_support.h"
 
 namespace erpt {
@@ -32,21 +33,11 @@ Outcome shadeAtGlass(int depth, size_t n) {
   PixelFilter box(FilterKind::Box);
   LightSampler lights(scene);
   StageContext ctx{scene, camera, box, lights, 7, 4, 4, 1, -1};
-  PathQueue paths;
-  PathSlotQueue slots;
-  RayQueue rays, shadowRays;
-  HitQueue hits;
-  paths.resize(n);
-  slots.resize(n);
-  prepareRays(rays, n);
-  prepareRays(shadowRays, n);
-  hits.resize(n);
+  test::ShadeQueues q(n);
+  auto& [paths, slots, rays, shadowRays, hits] = q;
   for (size_t k = 0; k < n; ++k) {
-    startPath(paths, uint32_t(k), sampleKey(ctx.seed, uint32_t(k % 16), uint32_t(k / 16)), uint32_t(k % 16), uint32_t(k / 16));
+    q.startSlot(k, ctx.seed, 16, Vec3(0, 0, 3), Vec3(0, 0, -1));
     paths.depth[k] = uint32_t(depth);
-    paths.prevSet(k, Vec3(0, 0, 3));
-    slots.path[k] = uint32_t(k);
-    setRay(rays, k, Vec3(0, 0, 3), Vec3(0, 0, -1), 0.0f, std::numeric_limits<float>::infinity());
   }
   tracer.intersect(rays, hits, {0, n}, RayCoherence::Incoherent);
   stageShadePath(ctx, paths, slots, rays, hits, shadowRays, VertexHistory{}, {0, n});

@@ -21,6 +21,8 @@
 #include "models/camera.h"
 #include "stages/shade_path_diffuse.h"
 #include "stages/stages.h"
+#include "support/environment_scene.h"
+#include "support/shade_queues.h"
 #include "support/slot_differences.h"
 #include "support/test_support.h"
 #include "tracer/tracer.h"
@@ -87,40 +89,38 @@ constexpr const char* kSphereLights = R"(<shape type="sphere"><point name="cente
     <transform name="to_world"><scale value="0.3"/><rotate x="1" angle="90"/><translate y="1.9" x="1"/></transform>
   </shape>)";
 
+// The environment: a map (sampled by its pixels, in the lanes' CDF searches) beside a triangle
+// light, and a constant one (uniform directions) beside a sphere light.
+constexpr const char* kEnvironmentMap = R"(<emitter type="envmap"><string name="filename" value="sky.exr"/>
+    <float name="scale" value="0.05"/><transform name="to_world"><rotate y="1" angle="30"/></transform></emitter>
+  <shape type="rectangle">
+    <emitter type="area"><rgb name="radiance" value="2 2 2"/></emitter>
+    <transform name="to_world"><scale value="0.3"/><rotate x="1" angle="90"/><translate y="1.9" x="1"/></transform>
+  </shape>)";
+constexpr const char* kConstantEnvironment = R"(<emitter type="constant"><rgb name="radiance" value="0.05 0.06 0.07"/></emitter>
+  <shape type="sphere"><point name="center" value="-1.2, 1.5, -1.2"/>
+    <float name="radius" value="0.15"/><emitter type="area"><rgb name="radiance" value="20 10 5"/></emitter></shape>)";
+
 std::string sceneWithLights(const char* lights) {
   std::string scene = kScene;
   scene.replace(scene.find("LIGHTS"), 6, lights);
   return scene;
 }
 
-struct Queues {
-  PathQueue paths;
-  PathSlotQueue slots;
-  RayQueue rays, shadowRays;
-  HitQueue hits;
-};
+using Queues = test::ShadeQueues;
 
 // n slots whose rays leave random points of the room in random directions, at depths 1..8,
 // with random throughputs, already intersected.
 Queues randomHits(const Tracer& tracer, uint64_t seed, size_t n) {
-  Queues q;
-  q.paths.resize(n);
-  q.slots.resize(n);
-  prepareRays(q.rays, n);
-  prepareRays(q.shadowRays, n);
-  q.hits.resize(n);
+  Queues q(n);
   for (size_t k = 0; k < n; ++k) {
     const uint64_t key = streamKey(11, k, 0);
     const Vec3 origin(3 * uniformFloat(key, 0) - 1.5f, 3 * uniformFloat(key, 1) - 1.5f, 3 * uniformFloat(key, 2) - 1.5f);
-    startPath(q.paths, uint32_t(k), sampleKey(seed, uint32_t(k % 97), uint32_t(k / 97)), uint32_t(k % 97), uint32_t(k / 97));
+    q.startSlot(k, seed, 97, origin, squareToUniformSphere(uniformFloat(key, 6), uniformFloat(key, 7)));
     q.paths.depth[k] = 1 + uint32_t(k % 8);
     q.paths.throughputSet(k, Color(0.2f + uniformFloat(key, 3), 0.2f + uniformFloat(key, 4), 0.2f + uniformFloat(key, 5)));
     q.paths.prevPdf[k] = 0.3f;
-    q.paths.prevSet(k, origin);
     q.paths.lastVertex[k] = int32_t(3 * k);  // a parent link the recorded vertex must carry
-    q.slots.path[k] = uint32_t(k);
-    setRay(q.rays, k, origin, squareToUniformSphere(uniformFloat(key, 6), uniformFloat(key, 7)), 0.0f,
-           std::numeric_limits<float>::infinity());
   }
   tracer.intersect(q.rays, q.hits, {0, n}, RayCoherence::Incoherent);
   return q;
@@ -130,11 +130,12 @@ using test::quantile;
 using test::relativeDifference;
 
 // A triangle light's density and normal are the same bits in both (read from the light's
-// row); a sphere's are computed, and agree up to rounding. `emitters`: every light of the
+// row); a sphere's and the environment's are computed, and agree up to rounding. `emitters`: every light of the
 // scene is connected to somewhere (so each way of sampling is exercised).
 void expectVectorKernelMatchesScalarBody(const char* lightShapes, size_t emitters) {
   test::TempDir dir;
   dir.write("octahedron.obj", kOctahedron);
+  writeImageAtomic(dir.file("sky.exr"), test::skyImage());
   const Scene scene = loadScene(dir.write("s.xml", sceneWithLights(lightShapes)));
   const Tracer tracer(scene);
   const Camera camera(scene.camera, 4, 4);
@@ -170,8 +171,10 @@ void expectVectorKernelMatchesScalarBody(const char* lightShapes, size_t emitter
 
   size_t aliveDiffer = 0, neeDiffer = 0, alive = 0, connected = 0;
   std::map<int32_t, size_t> connectedTo;  // connections by light, in the scalar body
-  std::set<int32_t> sphereEmitters;
-  for (uint32_t i = 0; i < scene.spheres.count(); ++i) sphereEmitters.insert(scene.spheres.emitter[i]);
+  // Lights whose sample the kernel computes (a triangle's density and normal it reads).
+  std::set<int32_t> computedEmitters;
+  for (uint32_t i = 0; i < scene.spheres.count(); ++i) computedEmitters.insert(scene.spheres.emitter[i]);
+  if (scene.environment()) computedEmitters.insert(int32_t(scene.environment() - scene.emitters.data()));
   std::vector<double> throughputErr, dirErr, originErr, pdfErr, neeErr, shadowDirErr, tfarErr, vertexErr, seedErr;
   for (size_t k = 0; k < n; ++k) {
     const bool sAlive = scalar.slots.alive[k] != 0, vAlive = vector.slots.alive[k] != 0;
@@ -192,7 +195,8 @@ void expectVectorKernelMatchesScalarBody(const char* lightShapes, size_t emitter
       ++connected;
       neeErr.push_back(relativeDifference(vector.slots.neeAt(k), scalar.slots.neeAt(k)));
       shadowDirErr.push_back(relativeDifference(vector.shadowRays.dirAt(k), scalar.shadowRays.dirAt(k)));
-      tfarErr.push_back(std::abs(vector.shadowRays.tfar[k] - scalar.shadowRays.tfar[k]) / scalar.shadowRays.tfar[k]);
+      const float sTfar = scalar.shadowRays.tfar[k], vTfar = vector.shadowRays.tfar[k];
+      tfarErr.push_back(sTfar == vTfar ? 0.0 : std::abs(vTfar - sTfar) / sTfar);  // the environment's: both infinite
     }
     EXPECT_EQ(vector.paths.radianceAt(k).x, scalar.paths.radianceAt(k).x);  // emission stays scalar
 
@@ -217,7 +221,7 @@ void expectVectorKernelMatchesScalarBody(const char* lightShapes, size_t emitter
       const double lightPdfErr =
           std::abs(vector.slots.neeLightPdf[k] - scalar.slots.neeLightPdf[k]) / scalar.slots.neeLightPdf[k];
       const double lightNormalErr = relativeDifference(vector.slots.neeLightNAt(k), scalar.slots.neeLightNAt(k));
-      if (sphereEmitters.count(scalar.slots.neeLightEmitter[k]) == 0) {
+      if (computedEmitters.count(scalar.slots.neeLightEmitter[k]) == 0) {
         ASSERT_EQ(lightPdfErr, 0.0) << "slot " << k;
         ASSERT_EQ(lightNormalErr, 0.0) << "slot " << k;
       }
@@ -257,6 +261,11 @@ TEST(ShadeDiffuse, VectorKernelMatchesTheScalarBodySlotBySlot) {
 
 TEST(ShadeDiffuse, VectorKernelMatchesTheScalarBodyUnderSphereLights) {
   expectVectorKernelMatchesScalarBody(kSphereLights, 4);
+}
+
+TEST(ShadeDiffuse, VectorKernelMatchesTheScalarBodyUnderEnvironmentLights) {
+  expectVectorKernelMatchesScalarBody(kEnvironmentMap, 2);
+  expectVectorKernelMatchesScalarBody(kConstantEnvironment, 2);
 }
 
 }  // namespace
