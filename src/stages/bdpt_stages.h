@@ -51,6 +51,18 @@ struct BdptSubpaths {
 
 enum class BdptSide { Light, Camera };
 
+// Whether the walk of sample i on `side`, its newest vertex at `depth` segments, samples a
+// bounce: the light subpath needs no more than maxDepth vertices (t >= 1), the camera subpath
+// no more than maxDepth + 1, and a sample of one strategy no more than its s or t.
+inline bool bdptWalkContinues(const BdptContext& ctx, BdptSide side, const BdptSubpaths& paths, size_t i,
+                              uint32_t depth) {
+  const bool fromLight = side == BdptSide::Light;
+  const int maxDepth = ctx.stage.maxDepth;
+  if (maxDepth >= 0 && int(depth) + (fromLight ? 1 : 0) >= maxDepth) return false;
+  const std::vector<int16_t>& cap = fromLight ? paths.strategyS : paths.strategyT;
+  return cap.empty() || int(depth) + 1 < cap[i];
+}
+
 // Starts the walks of samples [range) in walk slots of the same index: the light vertex (or
 // the eye vertex, with its camera ray) at vertices[base + i], and the ray; alive[i] says
 // whether there is a ray to trace.

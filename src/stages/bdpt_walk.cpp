@@ -16,6 +16,7 @@
 #include "kernels/bdpt_vertex.h"
 #include "kernels/surface_vertex.h"
 #include "stages/bdpt_stages.h"
+#include "stages/bdpt_walk_diffuse.h"
 #include "tracer/tracer.h"
 
 namespace erpt {
@@ -141,7 +142,14 @@ void stageBdptExtend(const BdptContext& ctx, BdptSide side, BdptSubpaths& paths,
   const Scene& scene = ctx.stage.scene;
   const bool fromLight = side == BdptSide::Light;
   BdptVertexQueue& vertices = paths.vertices;
+  // Plain diffuse triangles go to the vector kernel, a packet at a time; the rest run the body below.
+  BdptDiffuseWalkPacket diffuse;
+  const bool vector = ctx.stage.vectorShading;
   for (size_t k = range.begin; k < range.end; ++k) {
+    if (vector && diffuse.add(ctx, side, paths, walks, hits, k)) {
+      if (diffuse.full()) diffuse.extend(ctx, side, paths, walks, rays, hits, base, alive);
+      continue;
+    }
     alive[k] = 0;
     const uint32_t i = walks.sample[k];
     const uint32_t depth = walks.depth[k];  // segments so far, the ray just traced included
@@ -185,12 +193,7 @@ void stageBdptExtend(const BdptContext& ctx, BdptSide side, BdptSubpaths& paths,
     (fromLight ? paths.lightEnd : paths.cameraEnd)[i] = int32_t(v);
     vertices.setRow(v, x);
 
-    // Vertices so far: depth + 1. The light subpath needs no more than maxDepth of them (t >= 1),
-    // the camera subpath no more than maxDepth + 1.
-    const int maxDepth = ctx.stage.maxDepth;
-    if (maxDepth >= 0 && int(depth) + (fromLight ? 1 : 0) >= maxDepth) continue;
-    const int cap = vertexCap(paths, fromLight, i);
-    if (cap >= 0 && int(depth) + 1 >= cap) continue;
+    if (!bdptWalkContinues(ctx, side, paths, i, depth)) continue;
     const uint64_t key = fromLight ? lightSubpathStream(ctx.stage, paths.pixel[i], paths.sample[i])
                                    : sampleStream(ctx.stage, paths.pixel[i], paths.sample[i]);
     const VertexBsdf bsdf = vertexBsdf(scene, x);
@@ -232,6 +235,7 @@ void stageBdptExtend(const BdptContext& ctx, BdptSide side, BdptSubpaths& paths,
     setRay(rays, k, offsetOrigin(x.p, x.ng, wo), wo, 0.0f, std::numeric_limits<float>::infinity());
     alive[k] = 1;
   }
+  diffuse.extend(ctx, side, paths, walks, rays, hits, base, alive);
 }
 
 }  // namespace erpt

@@ -14,6 +14,7 @@
 #include "kernels/environment_map_lanes.h"
 #include "kernels/lane_gather.h"
 #include "kernels/lane_vec3.h"
+#include "kernels/surface_lanes.h"
 #include "kernels/surface_vertex.h"
 #include "kernels/uniform_lanes.h"
 #include "models/surface.h"
@@ -27,21 +28,6 @@ using namespace lanes3;
 using lanes = mask;
 constexpr size_t kLanes = batch::size;
 static_assert(DiffuseShadePacket::kCapacity % kLanes == 0, "a packet is whole batches");
-
-// squareToCosineHemisphere of warp.h: the concentric disk lifted to the hemisphere.
-V3 cosineHemisphere(const batch& u1, const batch& u2) {
-  const batch a = 2.0f * u1 - 1.0f, b = 2.0f * u2 - 1.0f;
-  const lanes wide = a * a > b * b;
-  const batch r = xsimd::select(wide, a, b);
-  const batch ratio = xsimd::select(wide, b, a) / r;  // 0/0 at the centre, replaced below
-  const batch quarter(kPi / 4);
-  const batch phi = xsimd::select(wide, quarter * ratio, batch(kPi / 2) - quarter * ratio);
-  const auto sc = xsimd::sincos(phi);
-  const lanes centre = (a == batch(0.0f)) & (b == batch(0.0f));
-  const batch x = xsimd::select(centre, batch(0.0f), r * sc.second);
-  const batch y = xsimd::select(centre, batch(0.0f), r * sc.first);
-  return {x, y, xsimd::sqrt(xsimd::max(batch(0.0f), 1.0f - x * x - y * y))};
-}
 
 // A light point of each lane's light: its position, its emitting normal, and (cone) whether
 // it was sampled in the cone of directions, whose solid-angle density is coneDensity.
@@ -170,14 +156,10 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
   for (size_t j = count_; j % kLanes != 0; ++j)
     slot_[j] = slot_[0], path_[j] = path_[0], triangle_[j] = triangle_[0], light_[j] = light_[0];
   const TriangleSoup& mesh = ctx.scene.mesh;
-  const bool meshHasNormals = mesh.nx.size() == mesh.vertexCount();  // the loader gives every vertex one
   const PacketLightQueue& lights = ctx.lights.packetLights();
   const Emitter* environment = ctx.lights.sampledEnvironment();
   const EnvironmentMap* map = environment ? environment->map.get() : nullptr;
   const EnvironmentMap::Tables mapTables = map ? map->tables() : EnvironmentMap::Tables{};
-  const auto* v0 = reinterpret_cast<const int32_t*>(mesh.v0.data());
-  const auto* v1 = reinterpret_cast<const int32_t*>(mesh.v1.data());
-  const auto* v2 = reinterpret_cast<const int32_t*>(mesh.v2.data());
   for (size_t i = 0; i < count_; i += kLanes) {
     auto get = [&](int c) { return batch::load_aligned(&in_[c][i]); };
     auto put = [&](int c, const batch& b) { b.store_aligned(&out_[c][i]); };
@@ -191,21 +173,11 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
     const indices triangle = indices::load_aligned(&triangle_[i]), light = indices::load_aligned(&light_[i]);
 
     // The surface point (triangleSurfaceAt).
-    const batch b1 = gather(hits.u, slot), b2 = gather(hits.v, slot), b0 = 1.0f - b1 - b2;
-    const indices i0 = gatherLanes(v0, triangle), i1 = gatherLanes(v1, triangle), i2 = gatherLanes(v2, triangle);
-    const V3 p0 = gather3(mesh.px, mesh.py, mesh.pz, i0), p1 = gather3(mesh.px, mesh.py, mesh.pz, i1),
-             p2 = gather3(mesh.px, mesh.py, mesh.pz, i2);
-    const V3 position = p0 * b0 + p1 * b1 + p2 * b2;
-    const V3 face = cross(p1 - p0, p2 - p0);
-    const V3 ng = face / xsimd::sqrt(dot(face, face));
+    const LaneTriangleHit hit =
+        triangleHitLanes(mesh, triangle, gather(hits.u, slot), gather(hits.v, slot), get(kSmooth) != batch(0.0f));
+    const V3 position = hit.position, ng = hit.ng;
     const V3 zero{batch(0.0f), batch(0.0f), batch(0.0f)};
-    const V3 interpolated = meshHasNormals ? gather3(mesh.nx, mesh.ny, mesh.nz, i0) * b0 +
-                                                 gather3(mesh.nx, mesh.ny, mesh.nz, i1) * b1 +
-                                                 gather3(mesh.nx, mesh.ny, mesh.nz, i2) * b2
-                                           : zero;
-    const batch interpolatedLength = xsimd::sqrt(dot(interpolated, interpolated));
-    const lanes useInterpolated = (get(kSmooth) != batch(0.0f)) & (interpolatedLength > batch(0.0f));
-    const LaneFrame frame(select(useInterpolated, interpolated / interpolatedLength, ng));
+    const LaneFrame frame(hit.shading);
     const V3 dir = gather3(rays.dirX, rays.dirY, rays.dirZ, slot);
     const batch wiZ = -dot(dir, frame.n);
     // sideFlip: the front, or the back of a two-sided material seen as its front.
@@ -284,7 +256,7 @@ void DiffuseShadePacket::shade(const StageContext& ctx, PathQueue& paths, PathSl
     put(kShadowTfar, shadow.tfar);
 
     // The cosine-weighted bounce (bsdfSample's diffuse lobe).
-    const V3 wo = cosineHemisphere(get(kUBsdf1), get(kUBsdf2));
+    const V3 wo = cosineHemisphereLanes(get(kUBsdf1), get(kUBsdf2));
     const batch pdf = wo.z * kInvPi;
     const V3 weight = (reflectance * (wo.z * kInvPi)) / pdf;
     const lanes bounces = seen & (wo.z > batch(0.0f)) & (pdf > batch(0.0f)) & ~isBlack(weight);

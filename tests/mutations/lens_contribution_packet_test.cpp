@@ -9,9 +9,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "mutations/lens_contribution_packet.h"
+#include "support/diffuse_room.h"
 #include "support/erpt_world.h"
 #include "support/slot_differences.h"
 #include "support/test_support.h"
@@ -19,16 +21,13 @@
 namespace erpt {
 namespace {
 
-constexpr const char* kScene = R"(<scene version="3.0.0">
+const std::string kScene = std::string(R"(<scene version="3.0.0">
   <sensor type="perspective">
     <float name="fov" value="70"/>
     <transform name="to_world"><lookat origin="0, 0, 1.8" target="0, 0, 0" up="0, 1, 0"/></transform>
     <film type="hdrfilm"><integer name="width" value="61"/><integer name="height" value="61"/></film>
   </sensor>
-  <shape type="cube">
-    <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.7 0.5 0.3"/></bsdf></bsdf>
-    <transform name="to_world"><scale value="2"/></transform>
-  </shape>
+)") + test::kDiffuseRoomWalls + R"(
   <shape type="rectangle">
     <bsdf type="diffuse"><rgb name="reflectance" value="0.4 0.4 0.9"/></bsdf>
     <transform name="to_world"><scale value="0.7"/><rotate y="1" angle="160"/><translate x="-0.6" y="-0.3"/></transform>

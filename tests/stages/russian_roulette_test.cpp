@@ -11,6 +11,7 @@
 #include "stages/stages.h"
 #include "tracer/tracer.h"
 #include "support/shade_queues.h"
+#include "support/stage_world.h"
 #include "support/test_support.h"
 
 namespace erpt {
@@ -24,22 +25,19 @@ struct Outcome {
 // n paths at depth `depth` with throughput 1 hit a glass slab head-on; counts which went on.
 Outcome shadeAtGlass(int depth, size_t n) {
   test::TempDir dir;
-  Scene scene = loadScene(dir.write("s.xml", R"(<scene version="3.0.0">
+  test::StageWorld world(dir.write("s.xml", R"(<scene version="3.0.0">
     <shape type="cube"><bsdf type="dielectric"><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/></bsdf>
       <transform name="to_world"><scale x="2" y="2" z="0.1"/></transform></shape>
-    <emitter type="constant"/></scene>)"));
-  Tracer tracer(scene);
-  Camera camera(scene.camera, 4, 4);
-  PixelFilter box(FilterKind::Box);
-  LightSampler lights(scene);
-  StageContext ctx{scene, camera, box, lights, 7, 4, 4, 1, -1};
+    <emitter type="constant"/></scene>)"),
+                         7, 4, 4, 1);
+  const StageContext& ctx = world.ctx;
   test::ShadeQueues q(n);
   auto& [paths, slots, rays, shadowRays, hits] = q;
   for (size_t k = 0; k < n; ++k) {
     q.startSlot(k, ctx.seed, 16, Vec3(0, 0, 3), Vec3(0, 0, -1));
     paths.depth[k] = uint32_t(depth);
   }
-  tracer.intersect(rays, hits, {0, n}, RayCoherence::Incoherent);
+  world.tracer.intersect(rays, hits, {0, n}, RayCoherence::Incoherent);
   stageShadePath(ctx, paths, slots, rays, hits, shadowRays, VertexHistory{}, {0, n});
   Outcome o;
   // Survivors carry their next ray: down into the slab (refracted) or back up (reflected). A

@@ -21,9 +21,11 @@
 #include "models/camera.h"
 #include "stages/shade_path_diffuse.h"
 #include "stages/stages.h"
+#include "support/diffuse_room.h"
 #include "support/environment_scene.h"
 #include "support/shade_queues.h"
 #include "support/slot_differences.h"
+#include "support/stage_world.h"
 #include "support/test_support.h"
 #include "tracer/tracer.h"
 
@@ -53,11 +55,8 @@ f 4//4 2//2 6//6
 f 1//1 4//4 6//6
 )";
 
-constexpr const char* kScene = R"(<scene version="3.0.0">
-  <shape type="cube">
-    <bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.7 0.5 0.3"/></bsdf></bsdf>
-    <transform name="to_world"><scale value="2"/></transform>
-  </shape>
+const std::string kScene = std::string(R"(<scene version="3.0.0">
+)") + test::kDiffuseRoomWalls + R"(
   <shape type="rectangle">
     <bsdf type="diffuse"><rgb name="reflectance" value="0.4 0.4 0.9"/></bsdf>
     <transform name="to_world"><rotate x="1" angle="30"/><translate y="-0.5" x="-0.6"/></transform>
@@ -136,12 +135,10 @@ void expectVectorKernelMatchesScalarBody(const char* lightShapes, size_t emitter
   test::TempDir dir;
   dir.write("octahedron.obj", kOctahedron);
   writeImageAtomic(dir.file("sky.exr"), test::skyImage());
-  const Scene scene = loadScene(dir.write("s.xml", sceneWithLights(lightShapes)));
-  const Tracer tracer(scene);
-  const Camera camera(scene.camera, 4, 4);
-  const PixelFilter box(FilterKind::Box);
-  const LightSampler lights(scene);
-  StageContext ctx{scene, camera, box, lights, 5, 97, 4, 1, -1};
+  test::StageWorld world(dir.write("s.xml", sceneWithLights(lightShapes)), 5, 97, 4, 1);
+  const Scene& scene = world.scene;
+  const Tracer& tracer = world.tracer;
+  StageContext& ctx = world.ctx;
   ctx.rrDepth = 3;
   const size_t n = 6007;  // not a multiple of the packet or of any vector width
   Queues scalar = randomHits(tracer, ctx.seed, n);

@@ -16,6 +16,7 @@
 #include "support/environment_scene.h"
 #include "support/shade_queues.h"
 #include "support/slot_differences.h"
+#include "support/stage_world.h"
 #include "support/test_support.h"
 #include "tracer/tracer.h"
 
@@ -25,19 +26,16 @@ namespace {
 TEST(ShadeMiss, VectorLookupsMatchTheScalarBody) {
   test::TempDir dir;
   writeImageAtomic(dir.file("sky.exr"), test::skyImage());
-  const Scene scene = loadScene(dir.write("s.xml", R"(<scene version="3.0.0">
+  test::StageWorld world(dir.write("s.xml", R"(<scene version="3.0.0">
   <shape type="rectangle"><bsdf type="diffuse"/>
     <transform name="to_world"><rotate x="1" angle="-90"/></transform></shape>
   <shape type="sphere"><float name="radius" value="0.2"/>
     <emitter type="area"><rgb name="radiance" value="5 5 5"/></emitter></shape>
   <emitter type="envmap"><string name="filename" value="sky.exr"/>
     <transform name="to_world"><rotate x="1" y="1" angle="40"/></transform></emitter>
-</scene>)"));
-  const Tracer tracer(scene);
-  const Camera camera(scene.camera, 4, 4);
-  const PixelFilter box(FilterKind::Box);
-  const LightSampler lights(scene);
-  StageContext ctx{scene, camera, box, lights, 5, 97, 4, 1, -1};
+</scene>)"),
+                         5, 97, 4, 1);
+  StageContext& ctx = world.ctx;
   const size_t n = 5003;  // not a multiple of the packet or of any vector width
   test::ShadeQueues q(n);
   for (size_t k = 0; k < n; ++k) {
@@ -49,7 +47,7 @@ TEST(ShadeMiss, VectorLookupsMatchTheScalarBody) {
     q.paths.prevPdf[k] = k % 7 == 0 ? 0.0f : 0.05f + uniformFloat(key, 8);  // a specular bounce now and then
     q.paths.lastVertex[k] = int32_t(2 * k);
   }
-  tracer.intersect(q.rays, q.hits, {0, n}, RayCoherence::Incoherent);
+  world.tracer.intersect(q.rays, q.hits, {0, n}, RayCoherence::Incoherent);
   const HitQueue& hits = q.hits;
 
   struct Run {

@@ -9,7 +9,8 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// Keeps the walks with alive[k] set, in order, with their rays; returns how many.
+}  // namespace
+
 size_t compactWalks(BdptWalkQueue& walks, RayQueue& rays, const std::vector<uint8_t>& alive, size_t live) {
   size_t kept = 0;
   for (size_t k = 0; k < live; ++k) {
@@ -22,9 +23,6 @@ size_t compactWalks(BdptWalkQueue& walks, RayQueue& rays, const std::vector<uint
   }
   return kept;
 }
-
-// Walks one side's subpaths of the chunk's n samples to their ends. Returns the rays traced.
-}  // namespace
 
 void BdptWavefront::prepare(size_t n) {
   paths.resizeSamples(n);

@@ -26,6 +26,9 @@ struct BdptWavefront {
   void prepare(size_t n);
 };
 
+// Keeps the first `live` walks with alive[k] set, in order, with their rays; returns how many.
+size_t compactWalks(BdptWalkQueue& walks, RayQueue& rays, const std::vector<uint8_t>& alive, size_t live);
+
 // Walks one side's subpaths of the chunk's n samples (w.paths holds their pixels and strata)
 // to their ends. Returns the rays traced.
 uint64_t walkSubpaths(const Tracer& tracer, const BdptContext& ctx, BdptSide side, BdptWavefront& w, size_t n,
