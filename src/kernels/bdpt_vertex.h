@@ -55,6 +55,22 @@ struct VertexBsdf {
   // (and only f is set) when f is black: the connection carries nothing and needs no density.
   bool connection(Vec3 towardCameraLocal, Vec3 towardLightLocal, Color& f, float& pdfToLight,
                   float& pdfToCamera) const {
+    if (material->kind == BsdfKind::Diffuse) {
+      // The commonest vertex, written out (the same bits as the three calls below): both
+      // directions on the side the camera's direction arrives on (either side of a two-sided
+      // surface), the cosine lobe's value and densities.
+      const float flip =
+          towardCameraLocal.z > 0 ? 1.0f : (material->twoSided && towardCameraLocal.z < 0 ? -1.0f : 0.0f);
+      const float cameraZ = towardCameraLocal.z * flip, lightZ = towardLightLocal.z * flip;
+      if (!(cameraZ > 0) || !(lightZ > 0)) {
+        f = Color(0.0f);
+        return false;
+      }
+      f = colors.reflectance * (lightZ * kInvPi);
+      pdfToLight = lightZ * kInvPi;
+      pdfToCamera = cameraZ * kInvPi;
+      return !isBlack(f);
+    }
     f = bsdfEval(*material, colors, towardCameraLocal, towardLightLocal);
     if (isBlack(f)) return false;
     pdfToLight = bsdfPdf(*material, colors, towardCameraLocal, towardLightLocal);
