@@ -53,12 +53,19 @@ bool BdptDiffuseWalkPacket::add(const BdptContext& ctx, BdptSide side, const Bdp
   in_[kReflectanceG][j] = m.reflectance.value.y;
   in_[kReflectanceB][j] = m.reflectance.value.z;
   in_[kPrevAtInfinity][j] = paths.vertices.kind[size_t(previous)] == kEnvironmentVertex ? 1.0f : 0.0f;
-  // The bounce's numbers, drawn only where the scalar walk draws them (a replayed chain's
-  // primary samples are read as it reads them).
+  // The bounce's numbers, drawn where the scalar walk samples a bounce. Replaying a chain's
+  // primary samples, reading a number keeps it in the chain's state, so the lobe's number is
+  // read too, as bsdfSample's caller reads it. Two rare cases still read more than the scalar
+  // walk: a light walk arriving at a grazing 0 cosine (which ends before its bounce), and the
+  // roulette's number of a bounce that fails (the back of a one-sided surface). Both leave the
+  // path unchanged, and a number the path does not use is uniform under the chain's target
+  // whether it is kept or drawn afresh (kernels/primary_samples.h): the chain stays exact, and
+  // only differs from the scalar walk's in which such numbers it keeps.
   bounces_[j] = bdptWalkContinues(ctx, side, paths, i, depth);
   if (bounces_[j]) {
     const uint64_t key = side == BdptSide::Light ? lightSubpathStream(ctx.stage, paths.pixel[i], paths.sample[i])
                                                  : sampleStream(ctx.stage, paths.pixel[i], paths.sample[i]);
+    if (ctx.stage.replay) drawFloat(ctx.stage, key, bounceDim(depth, kLobe));
     in_[kUBsdf1][j] = drawFloat(ctx.stage, key, bounceDim(depth, kBsdf1));
     in_[kUBsdf2][j] = drawFloat(ctx.stage, key, bounceDim(depth, kBsdf2));
     roulette_[j] = int(depth) >= ctx.stage.rrDepth ? drawDouble(ctx.stage, key, bounceDim(depth, kRoulette)) : 0.0;

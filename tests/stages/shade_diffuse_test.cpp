@@ -32,28 +32,6 @@
 namespace erpt {
 namespace {
 
-// An octahedron with vertex normals along its radii: a smooth mesh.
-constexpr const char* kOctahedron = R"(v 0.5 0 0
-v -0.5 0 0
-v 0 0.5 0
-v 0 -0.5 0
-v 0 0 0.5
-v 0 0 -0.5
-vn 1 0 0
-vn -1 0 0
-vn 0 1 0
-vn 0 -1 0
-vn 0 0 1
-vn 0 0 -1
-f 1//1 3//3 5//5
-f 3//3 2//2 5//5
-f 2//2 4//4 5//5
-f 4//4 1//1 5//5
-f 3//3 1//1 6//6
-f 2//2 3//3 6//6
-f 4//4 2//2 6//6
-f 1//1 4//4 6//6
-)";
 
 const std::string kScene = std::string(R"(<scene version="3.0.0">
 )") + test::kDiffuseRoomWalls + R"(
@@ -133,7 +111,7 @@ using test::relativeDifference;
 // scene is connected to somewhere (so each way of sampling is exercised).
 void expectVectorKernelMatchesScalarBody(const char* lightShapes, size_t emitters) {
   test::TempDir dir;
-  dir.write("octahedron.obj", kOctahedron);
+  dir.write("octahedron.obj", test::kSmoothOctahedronObj);
   writeImageAtomic(dir.file("sky.exr"), test::skyImage());
   test::StageWorld world(dir.write("s.xml", sceneWithLights(lightShapes)), 5, 97, 4, 1);
   const Scene& scene = world.scene;
