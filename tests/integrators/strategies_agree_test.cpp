@@ -20,15 +20,21 @@
 #include "erpt/render.h"
 #include "erpt/scene_loader.h"
 #include "support/block_bias.h"
+#include "support/environment_scene.h"
 #include "support/image_stats.h"
 #include "support/test_support.h"
 
 namespace erpt {
 namespace {
 
-enum Strategy { kLightTracing, kPathTracing, kNextEvent };
+// BDPT's strategies alone, and the path tracer (`path`: its own stages and vector kernels,
+// next-event estimation and BSDF sampling weighted by MIS), which they check.
+enum Strategy { kLightTracing, kPathTracing, kNextEvent, kPathIntegrator };
 const char* strategyName(Strategy s) {
-  return s == kLightTracing ? "light tracing" : s == kPathTracing ? "path tracing" : "next event";
+  return s == kLightTracing ? "light tracing"
+         : s == kPathTracing ? "path tracing"
+         : s == kNextEvent   ? "next event"
+                             : "the path tracer";
 }
 
 // 24 runs a side: Welch's z is then close to normal (about 46 degrees of freedom), so mean z^2
@@ -38,12 +44,12 @@ constexpr int kRuns = 24;
 
 std::vector<RgbImage> renders(const Scene& scene, Strategy strategy, int spp, uint64_t seed) {
   RenderSettings s;
-  s.integrator = "bdpt";
+  s.integrator = strategy == kPathIntegrator ? "path" : "bdpt";
   s.width = 48, s.height = 40;  // not powers of two
   s.filterSet = true;
   s.filter = FilterKind::Box;
   s.spp = spp;
-  bdptOf(s).unweighted = true;
+  if (strategy != kPathIntegrator) bdptOf(s).unweighted = true;
   if (strategy == kLightTracing) bdptOf(s).onlyT = 1;
   if (strategy == kPathTracing) bdptOf(s).onlyS = 0;
   if (strategy == kNextEvent) bdptOf(s).onlyS = 1;
@@ -63,6 +69,7 @@ struct Comparison {
 // Renders the scene with each strategy and compares every later one with the first.
 void expectStrategiesAgree(const std::string& xml, const std::vector<Comparison>& strategies, uint64_t seed) {
   test::TempDir dir;
+  writeImageAtomic(dir.file("sky.exr"), test::skyImage());  // for scenes lit by the test sky
   const Scene scene = loadScene(dir.write("s.xml", xml));
   const std::vector<RgbImage> first = renders(scene, strategies[0].strategy, strategies[0].spp, seed);
   for (size_t k = 1; k < strategies.size(); ++k) {
@@ -179,6 +186,19 @@ TEST(StatisticalStrategies, ConstantEnvironment) {
     <bsdf type="roughplastic"><float name="alpha" value="0.15"/><rgb name="diffuse_reflectance" value="0.5, 0.2, 0.2"/></bsdf></shape>
   <emitter type="constant"><rgb name="radiance" value="0.8, 0.9, 1.0"/></emitter>)"),
                         {{kPathTracing, 16}, {kNextEvent, 16}, {kLightTracing, 16}}, 49400);
+}
+
+// The test sky with its small sun through an open room, over a diffuse sphere: the path
+// tracer's sampling of the map and lookups of escaping rays (in its vector kernels) against
+// next-event estimation alone (BDPT's, which samples the map as LightSampler does), and that
+// against light tracing alone.
+TEST(StatisticalStrategies, EnvironmentMapInThePathTracer) {
+  expectStrategiesAgree(room(R"(
+  <shape type="sphere"><point name="center" value="0.3, 0.4, 0.3"/><float name="radius" value="0.4"/>
+    <bsdf type="diffuse"><rgb name="reflectance" value="0.3, 0.6, 0.3"/></bsdf></shape>
+  <emitter type="envmap"><string name="filename" value="sky.exr"/><float name="scale" value="0.2"/>
+    <transform name="to_world"><rotate y="1" angle="130"/></transform></emitter>)"),
+                        {{kNextEvent, 64}, {kPathIntegrator, 64}, {kLightTracing, 16}}, 49500);
 }
 
 }  // namespace
