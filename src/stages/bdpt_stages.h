@@ -51,16 +51,21 @@ struct BdptSubpaths {
 
 enum class BdptSide { Light, Camera };
 
+// The most vertices sample i's subpath on `side` may have (-1: no limit): its strategy's s or t.
+inline int bdptVertexCap(const BdptSubpaths& paths, BdptSide side, size_t i) {
+  const std::vector<int16_t>& cap = side == BdptSide::Light ? paths.strategyS : paths.strategyT;
+  return cap.empty() ? -1 : cap[i];
+}
+
 // Whether the walk of sample i on `side`, its newest vertex at `depth` segments, samples a
 // bounce: the light subpath needs no more than maxDepth vertices (t >= 1), the camera subpath
 // no more than maxDepth + 1, and a sample of one strategy no more than its s or t.
 inline bool bdptWalkContinues(const BdptContext& ctx, BdptSide side, const BdptSubpaths& paths, size_t i,
                               uint32_t depth) {
-  const bool fromLight = side == BdptSide::Light;
   const int maxDepth = ctx.stage.maxDepth;
-  if (maxDepth >= 0 && int(depth) + (fromLight ? 1 : 0) >= maxDepth) return false;
-  const std::vector<int16_t>& cap = fromLight ? paths.strategyS : paths.strategyT;
-  return cap.empty() || int(depth) + 1 < cap[i];
+  if (maxDepth >= 0 && int(depth) + (side == BdptSide::Light ? 1 : 0) >= maxDepth) return false;
+  const int cap = bdptVertexCap(paths, side, i);
+  return cap < 0 || int(depth) + 1 < cap;
 }
 
 // Starts the walks of samples [range) in walk slots of the same index: the light vertex (or

@@ -35,14 +35,6 @@ uint64_t lightSubpathKey(uint64_t seed, uint32_t pixel, uint32_t sample) {
   return sampleKey(mix64(seed ^ 0x4c6967687450617eull), pixel, sample);
 }
 
-namespace {
-// The most vertices sample i's subpath on `side` may have (-1: no limit): the strategy's s or t.
-int vertexCap(const BdptSubpaths& paths, bool light, size_t i) {
-  const std::vector<int16_t>& cap = light ? paths.strategyS : paths.strategyT;
-  return cap.empty() ? -1 : cap[i];
-}
-}  // namespace
-
 uint64_t lightSubpathStream(const StageContext& ctx, uint32_t pixel, uint32_t sample) {
   return ctx.replay ? (uint64_t(sample) | kLightSubpathStream) : lightSubpathKey(ctx.seed, pixel, sample);
 }
@@ -74,7 +66,7 @@ void stageBdptStartLight(const BdptContext& ctx, BdptSubpaths& paths, BdptWalkQu
     const uint64_t key = lightSubpathStream(ctx.stage, paths.pixel[i], paths.sample[i]);
     const StageContext& c = ctx.stage;
     EmissionSample es;
-    const int cap = vertexCap(paths, true, i);
+    const int cap = bdptVertexCap(paths, BdptSide::Light, i);
     if (ctx.stage.maxDepth == 0 || cap == 0 ||
         !lights.sampleEmission(drawDouble(c, key, kDimEmitPick), drawFloat(c, key, kDimEmit1),
                                drawFloat(c, key, kDimEmit1 + 1), drawFloat(c, key, kDimEmit1 + 2),
@@ -132,7 +124,7 @@ void stageBdptStartCamera(const BdptContext& ctx, BdptSubpaths& paths, BdptWalkQ
     walks.pdfNext[i] = cameraDirectionDensity(camera, ctx.stage.width, ctx.height, normalize(rays.dirAt(i)));
     walks.vertex[i] = int32_t(v);
     walks.depth[i] = 1;
-    const int cap = vertexCap(paths, false, i);
+    const int cap = bdptVertexCap(paths, BdptSide::Camera, i);
     alive[i] = cap < 0 || cap >= 2;
   }
 }
